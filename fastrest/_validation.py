@@ -1,0 +1,92 @@
+"""Domain of the model, the package's warning class, and input checks shared by every API layer.
+
+The Python layer validates and raises; the jitted kernels underneath return NaN for points outside
+the model's definition, so batch loops never raise.
+"""
+import warnings
+
+import numpy as np
+
+# Range the paper validated (JGM 2010, section 3.3 and end of section 3.3).
+EPS_Y_VALIDATED = (0.0005, 0.01)
+NU_VALIDATED = (0.2, 0.45)
+#: Largest normalised maximum interference the paper computed (JGM 2010, section 3.3).
+OMEGA_M_STAR_MAX = 425.0
+#: JG (2005) switches from Hertz to its elasto-plastic fit at w* = 1.9 (eqs 8-9).
+OMEGA_STAR_SWITCH = 1.9
+
+
+class ValidityWarning(UserWarning):
+    """Input is inside the model's definition but outside the range the paper validated
+    (0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45, w_m* <= 425)."""
+
+
+class ExtrapolationWarning(ValidityWarning):
+    """A result was extrapolated past w_m* = 425 at the caller's request (``extrapolate=True``)."""
+
+
+def as_float_array(x, name):
+    """Return ``x`` as a float64 ndarray, raising ValueError that names ``name`` if it is not numeric."""
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a real number or array of real numbers, got {x!r}") from exc
+    return a
+
+
+def check_finite_positive(x, name, unit):
+    """Raise ValueError unless every element of ``x`` is finite and > 0."""
+    a = as_float_array(x, name)
+    bad = ~(np.isfinite(a) & (a > 0))
+    if np.any(bad):
+        v = a[bad].flat[0] if a.ndim else a
+        raise ValueError(f"{name} must be finite and > 0 {unit}; got {v!r}")
+    return a
+
+
+def check_nu(nu, name="nu"):
+    """Poisson's ratio: the model is defined for 0 <= nu < 0.5."""
+    a = as_float_array(nu, name)
+    bad = ~((a >= 0.0) & (a < 0.5))  # also catches NaN
+    if np.any(bad):
+        v = a[bad].flat[0] if a.ndim else a
+        raise ValueError(f"{name} (Poisson's ratio) must be in [0, 0.5); got {v!r}")
+    return a
+
+
+def check_eps_y(eps_y, name="eps_y"):
+    """eps_y = Sy/E' must be finite and > 0."""
+    return check_finite_positive(eps_y, name, "(dimensionless, Sy/E')")
+
+
+def check_velocity(v, name, unit="(dimensionless, V1/Vc)"):
+    """An impact speed must be finite and >= 0 (0 is the elastic limit, e = 1)."""
+    a = as_float_array(v, name)
+    bad = ~(np.isfinite(a) & (a >= 0))
+    if np.any(bad):
+        val = a[bad].flat[0] if a.ndim else a
+        raise ValueError(f"{name} must be finite and >= 0 {unit}; got {val!r}")
+    return a
+
+
+def warn_if_outside_validated(eps_y, nu, stacklevel=3):
+    """Warn once (per call) if any material lies outside the paper's validated range."""
+    eps_y = np.asarray(eps_y)
+    nu = np.asarray(nu)
+    lo, hi = EPS_Y_VALIDATED
+    out_e = np.any((eps_y < lo) | (eps_y > hi))
+    lo_n, hi_n = NU_VALIDATED
+    out_n = np.any((nu < lo_n) | (nu > hi_n))
+    if out_e or out_n:
+        parts = []
+        if out_e:
+            parts.append(f"eps_y outside [{lo}, {hi}]")
+        if out_n:
+            parts.append(f"nu outside [{lo_n}, {hi_n}]")
+        warnings.warn(
+            "input outside the range validated by Jackson, Green & Marghitu (2010): "
+            + " and ".join(parts)
+            + "; the model is computed as defined but is not validated there",
+            ValidityWarning,
+            stacklevel=stacklevel,
+        )

@@ -1,0 +1,172 @@
+"""Normalised Jackson-Green (2005) elastic-perfectly plastic contact law of a sphere on a rigid flat.
+
+JGM 2010 eqs (8)-(15), normalised by the critical values of eqs (4)-(7): w = omega/omega_c,
+P* = P/P_c, A* = A/A_c. For w <= 1.9 the Hertz solution is used (eqs 14-15); above, JG's fit:
+
+    A* = w (w/1.9)^B,  B = 0.14 exp(23 eps_y)                          (8), (10)
+    a/R = (pi C eps_y / 2) sqrt(A*)                                     (from a = sqrt(A/pi), eq 4)
+    H_G/Sy = 2.84 - 0.92 (1 - cos(pi a/R)),  valid for 0 < a/R < 1     (12)
+    P* = exp(-w^(5/12)/4) w^1.5 + 4 (H_G/Sy)/C (1 - exp(-w^(5/9)/25)) w (9)
+
+P* depends on nu only through C(nu) = 1.295 exp(0.736 nu) (5). P* jumps by about -0.16 % at
+w = 1.9; integrals are split there. Past a/R = 1 the law is undefined: kernels return NaN and the
+Python wrappers raise.
+
+Kernels are plain ``@njit`` functions of floats; the public functions below validate and broadcast.
+"""
+import math
+
+import numba as nb
+import numpy as np
+
+from ._validation import OMEGA_STAR_SWITCH, check_eps_y, check_nu, as_float_array
+
+W_SWITCH = OMEGA_STAR_SWITCH
+
+
+@nb.njit(cache=True)
+def c_of_nu(nu):
+    """C(nu), JGM eq (5)."""
+    return 1.295 * math.exp(0.736 * nu)
+
+
+@nb.njit(cache=True)
+def area_exponent(eps_y):
+    """B = 0.14 exp(23 eps_y), JGM eq (10)."""
+    return 0.14 * math.exp(23.0 * eps_y)
+
+
+@nb.njit(cache=True)
+def a_star_kernel(w, eps_y, nu):
+    """A*(w): Hertz A* = w for w <= 1.9, JG eq (8) above."""
+    if w <= W_SWITCH:
+        return w
+    return w * (w / W_SWITCH) ** area_exponent(eps_y)
+
+
+@nb.njit(cache=True)
+def radius_ratio_kernel(w, eps_y, nu):
+    """Contact radius over sphere radius, a/R = (pi C eps_y/2) sqrt(A*)."""
+    return 0.5 * math.pi * c_of_nu(nu) * eps_y * math.sqrt(a_star_kernel(w, eps_y, nu))
+
+
+@nb.njit(cache=True)
+def p_star_jg(w, eps_y, nu, C, B):
+    """JG branch of P*(w) (eq 9) with C and B precomputed; NaN where a/R >= 1. Valid for w >= 1.9."""
+    a_star = w * (w / W_SWITCH) ** B
+    a_over_r = 0.5 * math.pi * C * eps_y * math.sqrt(a_star)
+    if not a_over_r < 1.0:
+        return np.nan
+    hg = 2.84 - 0.92 * (1.0 - math.cos(math.pi * a_over_r))
+    return math.exp(-0.25 * w ** (5.0 / 12.0)) * w**1.5 + 4.0 * hg / C * (
+        -math.expm1(-(w ** (5.0 / 9.0)) / 25.0)) * w
+
+
+@nb.njit(cache=True)
+def p_star_kernel(w, eps_y, nu):
+    """P*(w): Hertz w^1.5 for w <= 1.9 (eq 14), JG eq (9) above; NaN past a/R = 1 or for w < 0."""
+    if not w >= 0.0:
+        return np.nan
+    if w <= W_SWITCH:
+        return w**1.5
+    return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
+
+
+@nb.njit(cache=True)
+def omega_star_limit_kernel(eps_y, nu):
+    """The w* at which a/R reaches 1 (the JG law's end, eq 12); inf-free for eps_y > 0."""
+    C = c_of_nu(nu)
+    a_lim = (2.0 / (math.pi * C * eps_y)) ** 2  # A* at a/R = 1
+    if a_lim <= W_SWITCH:
+        return a_lim  # Hertz branch: A* = w
+    B = area_exponent(eps_y)
+    # w^(1+B) / 1.9^B = a_lim
+    return math.exp((math.log(a_lim) + B * math.log(W_SWITCH)) / (1.0 + B))
+
+
+@nb.njit(cache=True)
+def _p_star_array(w, eps_y, nu, out):
+    for i in range(w.size):
+        out[i] = p_star_kernel(w[i], eps_y[i], nu[i])
+
+
+@nb.njit(cache=True)
+def _a_star_array(w, eps_y, nu, out):
+    for i in range(w.size):
+        if w[i] >= 0.0 and radius_ratio_kernel(w[i], eps_y[i], nu[i]) < 1.0:
+            out[i] = a_star_kernel(w[i], eps_y[i], nu[i])
+        else:
+            out[i] = np.nan
+
+
+def broadcast_inputs(*named):
+    """Broadcast (array, name) pairs to flat contiguous float64 arrays; return (flat arrays, shape)."""
+    arrays = [as_float_array(a, n) for a, n in named]
+    b = np.broadcast_arrays(*arrays)
+    shape = b[0].shape
+    return [np.ascontiguousarray(x, dtype=np.float64).ravel() for x in b], shape
+
+
+def shaped(out, shape):
+    """Give a kernel's flat output the broadcast shape; 0-d becomes a Python float."""
+    out = out.reshape(shape)
+    return float(out) if out.ndim == 0 else out
+
+
+def check_omega(w, eps_y, nu, name="w"):
+    """Raise ValueError for w < 0 / NaN, or where a/R >= 1 (JG eq 12 undefined)."""
+    bad = ~(np.isfinite(w) & (w >= 0))
+    if np.any(bad):
+        raise ValueError(f"{name} (normalised interference omega/omega_c) must be finite and >= 0; "
+                         f"got {w[bad][0]!r}")
+    lim = np.array([omega_star_limit_kernel(e, n) for e, n in zip(eps_y, nu)]) if w.size else w
+    past = w >= lim
+    if np.any(past):
+        i = int(np.flatnonzero(past)[0])
+        raise ValueError(
+            f"{name} = {w[i]!r} is past the end of the Jackson-Green law: a/R reaches 1 at "
+            f"w* = {lim[i]:.6g} for eps_y = {eps_y[i]!r}, nu = {nu[i]!r} (eq 12 needs 0 < a/R < 1)")
+
+
+def _law(kernel, w, eps_y, nu):
+    (w, eps_y, nu), shape = broadcast_inputs((w, "w"), (eps_y, "eps_y"), (nu, "nu"))
+    check_eps_y(eps_y)
+    check_nu(nu)
+    check_omega(w, eps_y, nu)
+    out = np.empty_like(w)
+    kernel(w, eps_y, nu, out)
+    return shaped(out, shape)
+
+
+def P_star(w, eps_y, nu):
+    """Normalised contact force P* = P/P_c of the JG law, JGM eqs (9), (14).
+
+    Parameters
+    ----------
+    w : float or array_like
+        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1.
+    eps_y : float or array_like
+        Sy/E' (-), > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+
+    Returns
+    -------
+    float or ndarray
+        P* (-), broadcast over the inputs.
+    """
+    return _law(_p_star_array, w, eps_y, nu)
+
+
+def A_star(w, eps_y, nu):
+    """Normalised contact area A* = A/A_c of the JG law, JGM eqs (8), (15). Parameters as :func:`P_star`."""
+    return _law(_a_star_array, w, eps_y, nu)
+
+
+def omega_star_limit(eps_y, nu):
+    """Normalised interference w* at which a/R reaches 1, where the JG law (eq 12) ends (-)."""
+    (eps_y, nu), shape = broadcast_inputs((eps_y, "eps_y"), (nu, "nu"))
+    check_eps_y(eps_y)
+    check_nu(nu)
+    out = np.array([omega_star_limit_kernel(e, n) for e, n in zip(eps_y, nu)], dtype=np.float64)
+    return shaped(out, shape)

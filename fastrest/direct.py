@@ -1,0 +1,157 @@
+"""The direct solver: w_m*, e, 1 - e^2 and the residual state of one impact, with no tables.
+
+Each call integrates the JG law (JGM eqs 9, 25) by quadrature and inverts the energy balance (29)
+by Newton's method (:mod:`fastrest.energy`), then applies the unloading model (eqs 33/35, 38;
+:mod:`fastrest.unloading`). Relative error ~1e-15 against mpmath; tens of microseconds per point.
+It is the reference the fast paths (tables, curves) are measured against.
+
+Domain (every function): V1* >= 0 (V1* <= 1 is elastic: w_m* = V1*^0.8, e = 1); eps_y > 0;
+0 <= nu < 0.5. Outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45 a
+:class:`~fastrest.ValidityWarning` is issued. w_m* is limited to 425 (the paper's range):
+beyond it a ValueError names the limit and its V1*, unless ``extrapolate=True``, which computes
+with the same formulas up to the point where a/R = 1 and issues an
+:class:`~fastrest.ExtrapolationWarning`.
+"""
+import math
+import warnings
+
+import numba as nb
+import numpy as np
+
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_eps_y, check_nu,
+                          check_velocity, warn_if_outside_validated)
+from .contact import broadcast_inputs, omega_star_limit_kernel, shaped
+from .energy import V_SWITCH, f_star_kernel, omega_m_kernel
+from .unloading import restitution_kernel, unloading_code
+
+
+@nb.njit(cache=True)
+def w_upper(eps_y, nu, extrapolate):
+    """Largest w_m* allowed: 425, or with extrapolation the point where a/R = 1."""
+    lim = omega_star_limit_kernel(eps_y, nu)
+    if extrapolate:
+        return lim
+    return min(OMEGA_M_STAR_MAX, lim)
+
+
+@nb.njit(cache=True)
+def impact_kernel(v, eps_y, nu, model, extrapolate):
+    """(w_m*, e, 1 - e^2, w_res*, R_res/R) for one impact; NaNs outside the domain."""
+    w_hi = w_upper(eps_y, nu, extrapolate)
+    wm = omega_m_kernel(v, eps_y, nu, w_hi)
+    if not wm >= 0.0:
+        return np.nan, np.nan, np.nan, np.nan, np.nan
+    if v <= V_SWITCH:
+        wm1 = math.expm1(0.8 * math.log(v)) if v > 0.0 else -1.0  # w_m - 1 without cancellation
+    else:
+        wm1 = wm - 1.0
+    e, loss, w_res, r_res = restitution_kernel(v, wm, wm1, eps_y, nu, model)
+    return wm, e, loss, w_res, r_res
+
+
+@nb.njit(cache=True)
+def impact_array(v, eps_y, nu, model, extrapolate, out):
+    """Batch driver: out[k, i] for k in (w_m*, e, loss, w_res*, R_res/R)."""
+    for i in range(v.size):
+        r = impact_kernel(v[i], eps_y[i], nu[i], model, extrapolate)
+        for k in range(5):
+            out[k, i] = r[k]
+
+
+def _solve(v1_star, eps_y, nu, unloading, extrapolate):
+    model = unloading_code(unloading)
+    (v, eps_y, nu), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
+    check_velocity(v, "v1_star")
+    check_eps_y(eps_y)
+    check_nu(nu)
+    warn_if_outside_validated(eps_y, nu, stacklevel=4)
+    out = np.empty((5, v.size))
+    impact_array(v, eps_y, nu, model, bool(extrapolate), out)
+    bad = np.isnan(out[0])
+    if np.any(bad):
+        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate)
+    if extrapolate and np.any(out[0] > OMEGA_M_STAR_MAX):
+        warnings.warn(f"extrapolated past w_m* = {OMEGA_M_STAR_MAX:g}, the largest interference "
+                      "JGM computed; the JG law is not validated there", ExtrapolationWarning,
+                      stacklevel=4)
+    return out, shape
+
+
+def v1_star_limit(eps_y, nu, extrapolate=False):
+    """Largest V1* the model accepts for one material: w_m* = 425 or, extrapolating, a/R = 1."""
+    w = w_upper(float(eps_y), float(nu), bool(extrapolate))
+    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
+
+
+def raise_out_of_range(v, eps_y, nu, extrapolate):
+    """Raise the ValueError for the first impact whose w_m* is beyond the allowed range."""
+    v, e, n = float(v[0]), float(eps_y[0]), float(nu[0])
+    w_ar = omega_star_limit_kernel(e, n)
+    if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
+        raise ValueError(
+            f"v1_star = {v!r} is past the end of the Jackson-Green law for eps_y = {e!r}, nu = {n!r}: "
+            f"a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. V1* = {v1_star_limit(e, n, True):.10g} "
+            "(eq 12 needs 0 < a/R < 1)")
+    raise ValueError(
+        f"v1_star = {v!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
+        f"for eps_y = {e!r}, nu = {n!r} that limit is V1* = {v1_star_limit(e, n):.10g}. "
+        "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas")
+
+
+def omega_m_star(v1_star, eps_y, nu, extrapolate=False):
+    """Normalised maximum interference w_m* = omega_m/omega_c, solving JGM eq (29).
+
+    Parameters
+    ----------
+    v1_star : float or array_like
+        Normalised impact speed V1/V_c (-), eq (30); >= 0.
+    eps_y : float or array_like
+        Sy/E' (-), eq (11); > 0.
+    nu : float or array_like
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+    extrapolate : bool
+        Allow w_m* > 425 (up to a/R = 1), with a warning.
+
+    Returns
+    -------
+    float or ndarray
+        w_m* (-), broadcast over the inputs.
+    """
+    out, shape = _solve(v1_star, eps_y, nu, "jcg", extrapolate)
+    return shaped(out[0], shape)
+
+
+def e_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+    """Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38) with unloading (35) or (33).
+
+    Parameters as :func:`omega_m_star`; ``unloading`` is ``"jcg"`` (eq 35, default) or
+    ``"etsion"`` (eq 33).
+    """
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    return shaped(out[1], shape)
+
+
+def loss_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+    """Fraction of the impact energy dissipated, 1 - e^2 (-), computed without cancellation.
+
+    Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9). Parameters as :func:`e_star`.
+    """
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    return shaped(out[2], shape)
+
+
+def residual_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+    """Residual state after the impact: (w_res*, R_res/R), JGM eqs (33)-(36).
+
+    w_res* = omega_res/omega_c (-) and R_res/R (-), each broadcast over the inputs.
+    Parameters as :func:`e_star`.
+    """
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    return shaped(out[3], shape), shaped(out[4], shape)
+
+
+def solve(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+    """Everything at once: dict of w_m*, e, loss (1 - e^2), w_res*, R_res/R (one solve)."""
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    keys = ("omega_m_star", "e", "loss", "omega_res_star", "R_res_ratio")
+    return {k: shaped(out[i], shape) for i, k in enumerate(keys)}

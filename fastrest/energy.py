@@ -1,0 +1,140 @@
+"""Normalised loading energy of the JG contact law and its inverse, the maximum interference.
+
+JGM 2010 eqs (17)-(31). With W(w) = (5/2) int_1^w P*(z) dz, eq (25) gives (W_ep)* = -W(w) and the
+energy balance (29), divided by U_c (eq 24), reads
+
+    V1*^2 = F(w_m),   F(w) = w^2.5                                   for w <= 1.9 (Hertz, eq 19)
+                      F(w) = 1.9^2.5 + (5/2) int_1.9^w P*_JG(z) dz     for w > 1.9
+
+so (W_ep)* = 1 - F(w) (zero at w = 1, negative above). The integral is evaluated by composite
+Gauss-Legendre quadrature in t = ln z, where the integrand z P*(z) is an entire function of t, so a
+few 24-point panels give machine precision. The inverse w_m(V1*) is a safeguarded Newton iteration
+on ln F(w) = 2 ln V1* in ln w, with slope d ln F / d ln w = (5/2) w P*(w) / F(w).
+"""
+import math
+
+import numba as nb
+import numpy as np
+
+from .contact import (W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, check_omega, p_star_jg,
+                      shaped)
+from ._validation import check_eps_y, check_nu
+
+#: Gauss-Legendre order per panel and the widest panel in ln w; chosen by measurement against
+#: mpmath (tests/test_energy.py): 24 points on panels <= 0.75 wide reach ~1e-16 relative.
+GL_ORDER = 24
+PANEL_WIDTH = 0.75
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_ORDER)
+F_SWITCH = W_SWITCH**2.5  # F(1.9)
+V_SWITCH = W_SWITCH**1.25  # V1* at which w_m = 1.9
+
+
+@nb.njit(cache=True)
+def jg_integral(w0, w1, eps_y, nu, C, B):
+    """int_{w0}^{w1} P*_JG(z) dz for 1.9 <= w0 <= w1, by Gauss-Legendre in ln z."""
+    t0 = math.log(w0)
+    t1 = math.log(w1)
+    n = int(math.ceil((t1 - t0) / PANEL_WIDTH))
+    if n < 1:
+        n = 1
+    h = (t1 - t0) / n
+    total = 0.0
+    for k in range(n):
+        mid = t0 + (k + 0.5) * h
+        s = 0.0
+        for j in range(GL_ORDER):
+            z = math.exp(mid + 0.5 * h * _GL_X[j])
+            s += _GL_W[j] * z * p_star_jg(z, eps_y, nu, C, B)
+        total += 0.5 * h * s
+    return total
+
+
+@nb.njit(cache=True)
+def f_star_kernel(w, eps_y, nu):
+    """F(w) = V1*^2 that reaches maximum interference w (loading energy / U_c); NaN past a/R = 1."""
+    if not w >= 0.0:
+        return np.nan
+    if w <= W_SWITCH:
+        return w**2.5
+    return F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
+
+
+@nb.njit(cache=True)
+def omega_m_kernel(v, eps_y, nu, w_hi):
+    """w_m(V1*) solving F(w_m) = V1*^2 (eq 29); NaN if V1* < 0 or w_m would exceed w_hi.
+
+    Closed form w_m = V1*^0.8 for V1* <= 1.9^1.25. Above, Newton's method on
+    g(t) = ln F(e^t) - 2 ln V1*. Hertz bounds P*_JG from above, so t0 = 0.8 ln V1* lies below the
+    root; g is increasing and concave in t, so the iterates rise monotonically to the root and each
+    new F is the previous one plus the integral over the (short) step.
+    """
+    if not v >= 0.0:
+        return np.nan
+    if v <= V_SWITCH:
+        w = v**0.8
+        return w if w <= w_hi else np.nan
+    if not w_hi > W_SWITCH:
+        return np.nan
+    C = c_of_nu(nu)
+    B = area_exponent(eps_y)
+    target = 2.0 * math.log(v)
+    hi = math.log(w_hi)
+    t = max(math.log(W_SWITCH), 0.8 * math.log(v))
+    if t > hi:
+        return np.nan
+    w = math.exp(t)
+    f = F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, C, B)
+    for _ in range(60):
+        g = math.log(f) - target
+        dt = -g * f / (2.5 * w * p_star_jg(w, eps_y, nu, C, B))
+        t_new = t + dt
+        if t_new > hi:
+            if t == hi:
+                return np.nan  # F(w_hi) < V1*^2: beyond the allowed range
+            t_new = hi
+        w_new = math.exp(t_new)
+        if abs(dt) < 1e-9:
+            return w_new  # quadratic convergence: the error of w_new is ~dt^2
+        f += 2.5 * jg_integral(w, w_new, eps_y, nu, C, B)
+        t, w = t_new, w_new
+    return np.nan
+
+
+@nb.njit(cache=True)
+def _f_star_array(w, eps_y, nu, out):
+    for i in range(w.size):
+        out[i] = f_star_kernel(w[i], eps_y[i], nu[i])
+
+
+def loading_energy(w, eps_y, nu):
+    """F(w) = 1 - (W_ep)*(w): loading energy to maximum interference w over U_c (-), JGM eqs (19), (25).
+
+    Equal to V1*^2 of the impact whose maximum interference is w. Parameters as
+    :func:`fastrest.P_star`.
+    """
+    (w, eps_y, nu), shape = broadcast_inputs((w, "w"), (eps_y, "eps_y"), (nu, "nu"))
+    check_eps_y(eps_y)
+    check_nu(nu)
+    check_omega(w, eps_y, nu)
+    out = np.empty_like(w)
+    _f_star_array(w, eps_y, nu, out)
+    return shaped(out, shape)
+
+
+def W_star(w, eps_y, nu):
+    """Normalised elasto-plastic energy (W_ep)* of JGM eq (25): -(5/2) int_1^w P* dz (-).
+
+    Zero at w = 1, negative above; for 0 <= w < 1 the same integral over the Hertz law, 1 - w^2.5.
+    Equal to 1 - F(w) (see :func:`loading_energy`).
+
+    Parameters
+    ----------
+    w : float or array_like
+        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1.
+    eps_y : float or array_like
+        Sy/E' (-), > 0.
+    nu : float or array_like
+        Poisson's ratio, 0 <= nu < 0.5.
+    """
+    f = loading_energy(w, eps_y, nu)
+    return 1.0 - f

@@ -1,0 +1,303 @@
+"""Materials, effective properties and the critical values at the onset of yield.
+
+Jackson, Green & Marghitu (2010), "Predicting the coefficient of restitution of impacting
+elastic-perfectly plastic spheres", Nonlinear Dyn. 60:217-229, doi:10.1007/s11071-009-9591-z
+(JGM below), eqs (4)-(7), (11), (23)-(28) and Table 2.
+
+All quantities are SI: moduli and strengths in Pa, lengths in m, masses in kg, forces in N,
+energies in J, velocities in m/s.
+
+Note: JGM Tables 1, 3 and 4 print omega_c and P_c smaller than eqs (4) and (6) give, by the factor
+(1 - nu^2)^2 of the yielding material; their eps_y and C agree with eqs (5) and (11). This module
+implements the equations as printed, not the table values (see docs/model.md).
+"""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from ._validation import check_finite_positive, check_nu
+
+
+def poisson_factor(nu):
+    """Critical yield stress coefficient C(nu) = 1.295 exp(0.736 nu), JGM eq (5).
+
+    Parameters
+    ----------
+    nu : float or array_like
+        Poisson's ratio of the material that yields first, 0 <= nu < 0.5 (dimensionless).
+
+    Returns
+    -------
+    float or ndarray
+        C (dimensionless).
+    """
+    nu = check_nu(nu)
+    c = 1.295 * np.exp(0.736 * nu)
+    return float(c) if c.ndim == 0 else c
+
+
+def effective_modulus(E1, nu1, E2=math.inf, nu2=0.0):
+    """Combined elastic modulus E', 1/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Pa).
+
+    ``E2 = inf`` is a rigid counter-body. Hertz theory as used by JGM section 2.1.
+    """
+    inv = (1.0 - nu1**2) / E1
+    if math.isfinite(E2):
+        inv += (1.0 - nu2**2) / E2
+    return 1.0 / inv
+
+
+def critical_interference(C, Sy, E_eff, R):
+    """Critical interference at the onset of yield, omega_c = (pi C Sy / (2 E'))^2 R (m), JGM eq (4).
+
+    C: yield coefficient of eq (5) (-); Sy: yield strength (Pa); E_eff: E' (Pa); R: radius (m).
+    """
+    return (math.pi * C * Sy / (2.0 * E_eff)) ** 2 * R
+
+
+def critical_force(C, Sy, E_eff, R):
+    """Critical contact force P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N), JGM eq (6)."""
+    return 4.0 / 3.0 * (R / E_eff) ** 2 * (math.pi * C * Sy / 2.0) ** 3
+
+
+def critical_area(C, Sy, E_eff, R):
+    """Critical contact area A_c = pi^3 (C Sy R / (2 E'))^2 (m^2), JGM eq (7)."""
+    return math.pi**3 * (C * Sy * R / (2.0 * E_eff)) ** 2
+
+
+def critical_energy(C, Sy, E_eff, R):
+    """Strain energy at the onset of yield U_c = (pi C Sy)^5 R^3 / (60 E'^4) (J), JGM eq (23) = (2/5) P_c omega_c, eq (24)."""
+    return (math.pi * C * Sy) ** 5 * R**3 / (60.0 * E_eff**4)
+
+
+def critical_velocity(U_c, mass):
+    """Critical initial velocity V_c = sqrt(2 U_c / m) (m/s), JGM eq (28). U_c in J, mass in kg."""
+    return math.sqrt(2.0 * U_c / mass)
+
+
+def critical_velocity_ratios(nu):
+    """Ratios V_c / V_y of JGM eq (28) to the yield velocities of Johnson, Wu et al. and Thornton.
+
+    JGM section 2.5 (formulas above Table 2)::
+
+        V_c/(V_y)_Johnson  = sqrt((pi C)^5 / 3180)
+        V_c/(V_y)_Wu       = sqrt((C / 1.6)^5)
+        V_c/(V_y)_Thornton = sqrt(C^5)
+
+    Parameters
+    ----------
+    nu : float or array_like
+        Poisson's ratio, 0 <= nu < 0.5.
+
+    Returns
+    -------
+    dict
+        Keys ``"johnson"``, ``"wu"``, ``"thornton"`` (dimensionless).
+    """
+    C = np.asarray(poisson_factor(nu))
+
+    def out(x):
+        return float(x) if x.ndim == 0 else x
+
+    return {
+        "johnson": out(np.sqrt((np.pi * C) ** 5 / 3180.0)),
+        "wu": out(np.sqrt((C / 1.6) ** 5)),
+        "thornton": out(np.sqrt(C**5)),
+    }
+
+
+@dataclass(frozen=True)
+class Material:
+    """An isotropic elastic-perfectly plastic material (SI units).
+
+    Parameters
+    ----------
+    E : float
+        Young's modulus (Pa), finite and > 0.
+    nu : float
+        Poisson's ratio, 0 <= nu < 0.5.
+    Sy : float
+        Yield strength (Pa), finite and > 0. Use ``math.inf`` for a body that never yields
+        (e.g. the alumina spheres of JGM Tables 3-4).
+    rho : float, optional
+        Density (kg/m^3); needed only to compute a sphere's mass.
+    """
+
+    E: float
+    nu: float
+    Sy: float
+    rho: float | None = None
+
+    def __post_init__(self):
+        check_finite_positive(self.E, "E", "(Pa)")
+        check_nu(self.nu)
+        sy = float(self.Sy)
+        if not (sy > 0) or math.isnan(sy):
+            raise ValueError(f"Sy must be > 0 (Pa) (math.inf for a body that never yields); got {self.Sy!r}")
+        if self.rho is not None:
+            check_finite_positive(self.rho, "rho", "(kg/m^3)")
+
+    @property
+    def yield_product(self):
+        """C(nu) * Sy (Pa): the smaller of two bodies' products yields first (JGM after eq 5)."""
+        return poisson_factor(self.nu) * self.Sy
+
+
+class Impact:
+    """A sphere striking a flat (rigid or elastic-plastic), or two spheres, in JGM's equivalent form.
+
+    JGM reduce every case to an equivalent sphere of radius ``R_eff`` and modulus ``E_eff`` against a
+    rigid flat (section 2.1). The material that yields first (smaller C(nu) Sy) supplies nu, Sy and C
+    (JGM after eq 5), and eps_y = Sy / E' (eq 11).
+
+    Parameters
+    ----------
+    sphere : Material
+        The impacting sphere.
+    R : float
+        Radius of the sphere (m).
+    flat : Material, optional
+        The flat's material; ``None`` (default) is a rigid flat.
+    mass : float, optional
+        Mass of the moving body (kg). Default: the sphere's mass (4/3) pi R^3 rho from
+        ``sphere.rho``. Against a fixed flat this is the sphere's mass (JGM Table 1: m = 0.0327 kg).
+
+    Sphere on sphere: use :meth:`Impact.two_spheres`, which sets R_eff = R1 R2 / (R1 + R2) and
+    the reduced mass m1 m2 / (m1 + m2) (standard two-body reduction; JGM do not state it).
+    """
+
+    def __init__(self, sphere, R, flat=None, mass=None):
+        self._init(sphere, float(R), flat, None, mass)
+
+    @classmethod
+    def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
+        """Two free spheres: R_eff = R1 R2/(R1+R2), reduced mass m1 m2/(m1+m2), V1 = relative speed."""
+        check_finite_positive(R1, "R1", "(m)")
+        check_finite_positive(R2, "R2", "(m)")
+        m1 = _sphere_mass(sphere1, R1, mass1, "mass1")
+        m2 = _sphere_mass(sphere2, R2, mass2, "mass2")
+        self = cls.__new__(cls)
+        self._init(sphere1, float(R1), sphere2, float(R2), m1 * m2 / (m1 + m2))
+        return self
+
+    def _init(self, sphere, R1, other, R2, mass):
+        if not isinstance(sphere, Material):
+            raise TypeError("sphere must be a fastrest.Material")
+        if other is not None and not isinstance(other, Material):
+            raise TypeError("flat must be a fastrest.Material or None (rigid flat)")
+        check_finite_positive(R1, "R", "(m)")
+        self.sphere, self.flat = sphere, other
+        self.R_eff = R1 if R2 is None else R1 * R2 / (R1 + R2)
+        if other is None:
+            self.E_eff = effective_modulus(sphere.E, sphere.nu)
+            yielding = sphere
+        else:
+            self.E_eff = effective_modulus(sphere.E, sphere.nu, other.E, other.nu)
+            yielding = sphere if sphere.yield_product <= other.yield_product else other
+        if math.isinf(yielding.Sy):
+            raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
+        self.yielding = yielding
+        self.mass = _sphere_mass(sphere, R1, mass, "mass")
+
+    # --- material parameters of the normalised law ---
+    @property
+    def nu(self):
+        """Poisson's ratio of the material that yields first (-)."""
+        return self.yielding.nu
+
+    @property
+    def Sy(self):
+        """Yield strength of the material that yields first (Pa)."""
+        return self.yielding.Sy
+
+    @property
+    def C(self):
+        """C(nu) of eq (5) for the material that yields first (-)."""
+        return poisson_factor(self.nu)
+
+    @property
+    def eps_y(self):
+        """eps_y = Sy / E' (-), JGM eq (11)."""
+        return self.Sy / self.E_eff
+
+    # --- critical values, eqs (4), (6), (7), (23), (28) ---
+    @property
+    def omega_c(self):
+        """Critical interference (m), eq (4)."""
+        return critical_interference(self.C, self.Sy, self.E_eff, self.R_eff)
+
+    @property
+    def P_c(self):
+        """Critical force (N), eq (6)."""
+        return critical_force(self.C, self.Sy, self.E_eff, self.R_eff)
+
+    @property
+    def A_c(self):
+        """Critical contact area (m^2), eq (7)."""
+        return critical_area(self.C, self.Sy, self.E_eff, self.R_eff)
+
+    @property
+    def U_c(self):
+        """Critical strain energy (J), eq (23)."""
+        return critical_energy(self.C, self.Sy, self.E_eff, self.R_eff)
+
+    @property
+    def V_c(self):
+        """Critical initial velocity (m/s), eq (28)."""
+        return critical_velocity(self.U_c, self.mass)
+
+    def critical_values(self):
+        """All critical and effective values as a dict (SI units)."""
+        return {
+            "E_eff": self.E_eff, "R_eff": self.R_eff, "mass": self.mass, "nu": self.nu,
+            "Sy": self.Sy, "C": self.C, "eps_y": self.eps_y, "omega_c": self.omega_c,
+            "P_c": self.P_c, "A_c": self.A_c, "U_c": self.U_c, "V_c": self.V_c,
+        }
+
+    def __repr__(self):
+        flat = "rigid flat" if self.flat is None else repr(self.flat)
+        return f"Impact(sphere={self.sphere!r}, R_eff={self.R_eff!r}, flat={flat}, mass={self.mass!r})"
+
+    # --- dimensional restitution API (eqs 16, 29-38) ---
+    def _v1_star(self, V1):
+        from ._validation import check_velocity
+
+        return check_velocity(V1, "V1", "(m/s)") / self.V_c
+
+    def omega_m(self, V1, extrapolate=False):
+        """Maximum interference omega_m (m) for impact speed V1 (m/s), eq (29)."""
+        from . import direct
+
+        return direct.omega_m_star(self._v1_star(V1), self.eps_y, self.nu, extrapolate=extrapolate) * self.omega_c
+
+    def e(self, V1, unloading="jcg", extrapolate=False):
+        """Coefficient of restitution e = V2/V1 (-) for impact speed V1 (m/s), eqs (16), (38)."""
+        from . import direct
+
+        return direct.e_star(self._v1_star(V1), self.eps_y, self.nu, unloading=unloading, extrapolate=extrapolate)
+
+    def rebound_velocity(self, V1, unloading="jcg", extrapolate=False):
+        """Rebound speed V2 (m/s) for impact speed V1 (m/s), eq (38)."""
+        V1a = np.asarray(V1, dtype=np.float64)
+        out = self.e(V1, unloading=unloading, extrapolate=extrapolate) * V1a
+        return float(out) if np.ndim(out) == 0 else out
+
+    def residual(self, V1, unloading="jcg", extrapolate=False):
+        """Residual interference omega_res (m) and residual radius R_res (m), eqs (33)-(36).
+
+        Returns a tuple ``(omega_res, R_res)``.
+        """
+        from . import direct
+
+        w_res, r_ratio = direct.residual_star(self._v1_star(V1), self.eps_y, self.nu,
+                                              unloading=unloading, extrapolate=extrapolate)
+        return w_res * self.omega_c, r_ratio * self.R_eff
+
+
+def _sphere_mass(material, R, mass, name):
+    if mass is not None:
+        return float(check_finite_positive(mass, name, "(kg)"))
+    if material.rho is None:
+        raise ValueError(f"{name} is required (kg) when the sphere's Material has no density rho")
+    return 4.0 / 3.0 * math.pi * R**3 * material.rho
