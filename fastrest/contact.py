@@ -52,11 +52,14 @@ def radius_ratio_kernel(w, eps_y, nu):
 
 @nb.njit(cache=True)
 def p_star_jg(w, eps_y, nu, C, B):
-    """JG branch of P*(w) (eq 9) with C and B precomputed; NaN where a/R >= 1. Valid for w >= 1.9."""
+    """JG branch of P*(w) (eq 9) with C and B precomputed, for w >= 1.9.
+
+    Not checked against a/R < 1: callers bound w (the solvers by the a/R = 1 point, see
+    :func:`omega_star_limit_kernel`); the table generator evaluates the formula a little past it
+    on purpose, as a smooth extension that keeps interpolation stencils of valid materials whole.
+    """
     a_star = w * (w / W_SWITCH) ** B
     a_over_r = 0.5 * math.pi * C * eps_y * math.sqrt(a_star)
-    if not a_over_r < 1.0:
-        return np.nan
     hg = 2.84 - 0.92 * (1.0 - math.cos(math.pi * a_over_r))
     return math.exp(-0.25 * w ** (5.0 / 12.0)) * w**1.5 + 4.0 * hg / C * (
         -math.expm1(-(w ** (5.0 / 9.0)) / 25.0)) * w
@@ -67,6 +70,16 @@ def p_star_kernel(w, eps_y, nu):
     """P*(w): Hertz w^1.5 for w <= 1.9 (eq 14), JG eq (9) above; NaN past a/R = 1 or for w < 0."""
     if not w >= 0.0:
         return np.nan
+    if w <= W_SWITCH:
+        return w**1.5
+    if not radius_ratio_kernel(w, eps_y, nu) < 1.0:
+        return np.nan
+    return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
+
+
+@nb.njit(cache=True)
+def p_star_unchecked(w, eps_y, nu):
+    """P*(w) without the a/R < 1 check (for callers that bound w themselves)."""
     if w <= W_SWITCH:
         return w**1.5
     return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))

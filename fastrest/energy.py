@@ -60,13 +60,40 @@ def f_star_kernel(w, eps_y, nu):
 
 
 @nb.njit(cache=True)
+def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
+    """Solve ln F(w_m) = target (> ln F(1.9)) by Newton's method in t = ln w, from (w, f = F(w)).
+
+    (w, f) must lie at or below the root. Hertz bounds P*_JG from above and ln F is increasing and
+    concave in t above w = 1.9, so the iterates rise monotonically to the root; each new F is the
+    previous one plus the integral over the (short) step. Returns (w_m, w_last, f_last) where
+    (w_last, f_last) is the last point evaluated, still below the root, from which a caller
+    marching through increasing speeds continues. w_m is NaN if it would exceed e^hi.
+    """
+    t = math.log(w)
+    for _ in range(60):
+        g = math.log(f) - target
+        dt = -g * f / (2.5 * w * p_star_jg(w, eps_y, nu, C, B))
+        t_new = t + dt
+        if t_new > hi:
+            if t == hi:
+                # F(w_hi) < V1*^2: beyond the allowed range, unless by rounding only (V1* given as
+                # the limit itself, whose F was summed along another path)
+                return (w if g > -1e-14 else np.nan), w, f
+            t_new = hi
+        w_new = math.exp(t_new)
+        if abs(dt) < 1e-9:
+            return w_new, w, f  # quadratic convergence: the error of w_new is ~dt^2
+        f += 2.5 * jg_integral(w, w_new, eps_y, nu, C, B)
+        t, w = t_new, w_new
+    return np.nan, w, f
+
+
+@nb.njit(cache=True)
 def omega_m_kernel(v, eps_y, nu, w_hi):
     """w_m(V1*) solving F(w_m) = V1*^2 (eq 29); NaN if V1* < 0 or w_m would exceed w_hi.
 
-    Closed form w_m = V1*^0.8 for V1* <= 1.9^1.25. Above, Newton's method on
-    g(t) = ln F(e^t) - 2 ln V1*. Hertz bounds P*_JG from above, so t0 = 0.8 ln V1* lies below the
-    root; g is increasing and concave in t, so the iterates rise monotonically to the root and each
-    new F is the previous one plus the integral over the (short) step.
+    Closed form w_m = V1*^0.8 for V1* <= 1.9^1.25; above, :func:`newton_from_below` started at
+    the Hertz lower bound V1*^0.8.
     """
     if not v >= 0.0:
         return np.nan
@@ -77,27 +104,31 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
         return np.nan
     C = c_of_nu(nu)
     B = area_exponent(eps_y)
-    target = 2.0 * math.log(v)
     hi = math.log(w_hi)
     t = max(math.log(W_SWITCH), 0.8 * math.log(v))
     if t > hi:
         return np.nan
     w = math.exp(t)
     f = F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, C, B)
-    for _ in range(60):
-        g = math.log(f) - target
-        dt = -g * f / (2.5 * w * p_star_jg(w, eps_y, nu, C, B))
-        t_new = t + dt
-        if t_new > hi:
-            if t == hi:
-                return np.nan  # F(w_hi) < V1*^2: beyond the allowed range
-            t_new = hi
-        w_new = math.exp(t_new)
-        if abs(dt) < 1e-9:
-            return w_new  # quadratic convergence: the error of w_new is ~dt^2
-        f += 2.5 * jg_integral(w, w_new, eps_y, nu, C, B)
-        t, w = t_new, w_new
-    return np.nan
+    return newton_from_below(2.0 * math.log(v), w, f, hi, eps_y, nu, C, B)[0]
+
+
+@nb.njit(cache=True)
+def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
+    """w_m at increasing speeds v[0] <= v[1] <= ... (all > 1.9^1.25), marching one solution into the next.
+
+    Much cheaper per point than :func:`omega_m_kernel` when the speeds are dense (table building).
+    """
+    C = c_of_nu(nu)
+    B = area_exponent(eps_y)
+    hi = math.log(w_hi)
+    w = W_SWITCH
+    f = F_SWITCH
+    for i in range(v.size):
+        if not v[i] > V_SWITCH:
+            out[i] = np.nan
+            continue
+        out[i], w, f = newton_from_below(2.0 * math.log(v[i]), w, f, hi, eps_y, nu, C, B)
 
 
 @nb.njit(cache=True)

@@ -20,7 +20,7 @@ import math
 import numba as nb
 import numpy as np
 
-from .contact import W_SWITCH, a_star_kernel, p_star_kernel
+from .contact import W_SWITCH, a_star_kernel, p_star_unchecked
 
 UNLOADING_MODELS = ("jcg", "etsion")
 JCG, ETSION = 0, 1
@@ -54,7 +54,7 @@ def restitution_kernel(v, wm, wm1, eps_y, nu, model):
     if wm1 <= 0.0 or (model == ETSION and wm <= W_SWITCH):
         # Elastic impact (V1* <= 1), or Etsion unloading after Hertz loading: e = 1 exactly.
         return 1.0, 0.0, 0.0, 1.0
-    p = p_star_kernel(wm, eps_y, nu)
+    p = p_star_unchecked(wm, eps_y, nu)  # wm is bounded by the solver
     if model == JCG:
         r = jcg_residual_ratio(wm1)
         w_res = r * wm

@@ -1,0 +1,271 @@
+"""Scene curves: the model for one material, tabulated once, evaluated in nanoseconds.
+
+:func:`curve` builds a :class:`Curve` for one (eps_y, nu, unloading model) up to the largest
+speed a scene needs. Closed forms are used where they exist (V1* <= 1: elastic; V1* <= 1.9^1.25:
+Hertz loading, w_m* = V1*^0.8, JGM eqs 19, 35); above, w_m*, e and 1 - e^2 are degree-5 polynomials
+on cells indexed by the float's bits (:mod:`fastrest.interpolation`), fitted to the direct solver
+(:mod:`fastrest.direct`) at each cell's Chebyshev points.
+
+The curve's data is a :class:`CurveData` namedtuple of scalars and arrays: pass it to the
+``@njit`` functions of :mod:`fastrest.jit` from your own Numba code.
+"""
+import math
+from collections import namedtuple
+
+import numba as nb
+import numpy as np
+
+from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, check_velocity, warn_if_outside_validated
+from .direct import raise_out_of_range, v1_star_limit, w_upper
+from .energy import V_SWITCH, omega_m_sorted_kernel
+from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, chebyshev_nodes, fit_cells,
+                            horner_row)
+from .unloading import ETSION, JCG, UNLOADING_MODELS, jcg_residual_ratio, restitution_kernel, unloading_code
+
+#: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-15 on w_m* (bench/curve_accuracy.py).
+BITS_PER_OCTAVE = 5
+
+CurveData = namedtuple("CurveData", ["model", "v_max", "shift", "base", "omega_rows", "e_rows", "loss_rows"])
+CurveData.__doc__ = """Numba-friendly data of one :class:`Curve`.
+
+model: 0 = JCG (eq 35), 1 = Etsion (eq 33); v_max: largest V1* tabulated; shift, base: cell index
+parameters; *_rows: (ncell, 8) float64 arrays of [center, 1/half_width, c0..c5] for w_m*, e, 1 - e^2.
+"""
+
+
+# --- closed forms below the tabulated range -------------------------------------------------
+
+@nb.njit(cache=True)
+def closed_form(v, model):
+    """(w_m*, e, 1 - e^2) for 0 <= v <= 1.9^1.25 (Hertz loading), exact (JGM eqs 19, 33, 35)."""
+    if v <= 1.0:
+        return v**0.8, 1.0, 0.0
+    lv = math.log(v)
+    w = math.exp(0.8 * lv)
+    if model == ETSION:
+        return w, 1.0, 0.0
+    r = jcg_residual_ratio(math.expm1(0.8 * lv))
+    return w, math.sqrt(1.0 - r), r
+
+
+# --- scalar kernels on CurveData (the public njit API re-exports these) ----------------------
+
+@nb.njit(cache=True)
+def omega_m_curve(data, v):
+    """w_m*(V1*) from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
+    if v > V_SWITCH:
+        if v <= data.v_max:
+            return horner_row(data.omega_rows, cell_index(v, data.shift, data.base), v)
+        return np.nan
+    if v >= 0.0:
+        return v**0.8
+    return np.nan
+
+
+@nb.njit(cache=True)
+def e_curve(data, v):
+    """e(V1*) from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
+    if v > V_SWITCH:
+        if v <= data.v_max:
+            return horner_row(data.e_rows, cell_index(v, data.shift, data.base), v)
+        return np.nan
+    if v >= 0.0:
+        return closed_form(v, data.model)[1]
+    return np.nan
+
+
+@nb.njit(cache=True)
+def loss_curve(data, v):
+    """1 - e^2 at V1* from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
+    if v > V_SWITCH:
+        if v <= data.v_max:
+            return horner_row(data.loss_rows, cell_index(v, data.shift, data.base), v)
+        return np.nan
+    if v >= 0.0:
+        return closed_form(v, data.model)[2]
+    return np.nan
+
+
+@nb.njit(cache=True)
+def _curve_array(data, what, v, out):
+    if what == 0:
+        for i in range(v.size):
+            out[i] = omega_m_curve(data, v[i])
+    elif what == 1:
+        for i in range(v.size):
+            out[i] = e_curve(data, v[i])
+    else:
+        for i in range(v.size):
+            out[i] = loss_curve(data, v[i])
+
+
+# Scalar calls from Python: the dispatcher's type resolution and unboxing a namedtuple of arrays
+# cost more than the evaluation, so Curve's scalar path calls the compiled entry point of this
+# kernel directly with one packed array (row 0: v_max, shift, base, model, quantity).
+@nb.njit(cache=True)
+def _scalar_packed(packed, v):
+    what = int(packed[0, 4])
+    if v > V_SWITCH:
+        if v <= packed[0, 0]:
+            return horner_row(packed, cell_index(v, int(packed[0, 1]), int(packed[0, 2]) - 1), v)
+        return np.nan
+    if v >= 0.0:
+        return closed_form(v, int(packed[0, 3]))[what]
+    return np.nan
+
+
+_SCALAR_SIG = (nb.float64[:, ::1], nb.float64)
+
+
+def _scalar_entry():
+    """The compiled C entry point of :func:`_scalar_packed` (skips dispatch; ~60 ns faster)."""
+    _scalar_packed.compile(_SCALAR_SIG)
+    cres = _scalar_packed.overloads.get(_scalar_packed.signatures[0])
+    return getattr(cres, "entry_point", None) or _scalar_packed
+
+
+def _pack(data, what, rows):
+    meta = np.zeros((1, rows.shape[1]))
+    meta[0, :5] = (data.v_max, data.shift, data.base, data.model, what)
+    return np.ascontiguousarray(np.vstack([meta, rows]))
+
+
+# --- building ---------------------------------------------------------------------------------
+
+def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
+                     bits_per_octave=BITS_PER_OCTAVE):
+    """Tabulate one material: returns :class:`CurveData` (no validation of eps_y/nu here)."""
+    model = unloading_code(unloading)
+    w_hi = w_upper(eps_y, nu, extrapolate)
+    limit = v1_star_limit(eps_y, nu, extrapolate)
+    if v_max is None:
+        v_max = limit
+    elif v_max > limit:
+        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate)
+    shift = MANTISSA_BITS - bits_per_octave
+    if v_max <= V_SWITCH:  # all closed form: a single dummy cell
+        rows = np.zeros((1, 8))
+        return CurveData(model, float(v_max), shift, 0, rows, rows, rows)
+    base, edges = cell_edges(V_SWITCH, v_max, bits_per_octave)
+    nodes = chebyshev_nodes(edges)
+    flat = nodes.ravel()
+    w = np.empty(flat.size)
+    omega_m_sorted_kernel(flat, eps_y, nu, w_hi, w)
+    vals = _restitution_at(flat, w, eps_y, nu, model)
+    rows = [np.ascontiguousarray(fit_cells(edges, q.reshape(nodes.shape))) for q in (w, vals[0], vals[1])]
+    return CurveData(model, float(v_max), shift, int(base), *rows)
+
+
+@nb.njit(cache=True)
+def _restitution_at(v, w, eps_y, nu, model):
+    out = np.empty((2, v.size))
+    for i in range(v.size):
+        e, loss, _, _ = restitution_kernel(v[i], w[i], w[i] - 1.0, eps_y, nu, model)
+        out[0, i] = e
+        out[1, i] = loss
+    return out
+
+
+class Curve:
+    """The JGM model for one material and unloading model, tabulated up to ``v_max``.
+
+    Build with :func:`curve`. Methods take V1* = V1/V_c (dimensionless, scalar or array) and
+    broadcast; a scalar in gives a float out. Speeds outside [0, v_max] raise ValueError (the
+    jitted functions in :mod:`fastrest.jit` return NaN instead).
+
+    Attributes
+    ----------
+    eps_y, nu : float
+        Material parameters (-).
+    unloading : str
+        ``"jcg"`` (eq 35) or ``"etsion"`` (eq 33).
+    v_max : float
+        Largest V1* tabulated (-).
+    data : CurveData
+        Numba-friendly data for :mod:`fastrest.jit` (``fastrest.jit.e_curve(data, v)``).
+    """
+
+    def __init__(self, eps_y, nu, unloading, data):
+        self.eps_y, self.nu, self.unloading, self.data = eps_y, nu, unloading, data
+        self.v_max = data.v_max
+        self._packed = [_pack(data, what, rows)
+                        for what, rows in enumerate((data.omega_rows, data.e_rows, data.loss_rows))]
+        self._entry = _scalar_entry()
+
+    def __repr__(self):
+        return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
+                f"v_max={self.v_max!r}, cells={self.data.e_rows.shape[0]})")
+
+    def _eval(self, what, v):
+        a = np.asarray(v, dtype=np.float64)
+        flat = np.ascontiguousarray(a).ravel()
+        out = np.empty(flat.size)
+        _curve_array(self.data, what, flat, out)
+        if np.isnan(out).any():
+            self._raise(flat[np.isnan(out)])
+        out = out.reshape(a.shape)
+        return float(out) if out.ndim == 0 else out
+
+    def _raise(self, bad):
+        check_velocity(bad, "v1_star")
+        raise ValueError(f"v1_star = {float(bad[0])!r} is beyond this curve's v_max = {self.v_max!r} "
+                         "(build the curve with a larger v_max)")
+
+    def omega_m(self, v1_star):
+        """Normalised maximum interference w_m* at V1* (-), JGM eq (29)."""
+        if type(v1_star) is float:  # fast scalar path
+            r = self._entry(self._packed[0], v1_star)
+            if r == r:
+                return r
+        return self._eval(0, v1_star)
+
+    def e(self, v1_star):
+        """Coefficient of restitution at V1* (-), JGM eqs (16), (38)."""
+        if type(v1_star) is float:  # fast scalar path
+            r = self._entry(self._packed[1], v1_star)
+            if r == r:
+                return r
+        return self._eval(1, v1_star)
+
+    def loss(self, v1_star):
+        """Dissipated fraction 1 - e^2 at V1* (-), accurate in relative terms as V1* -> 1."""
+        if type(v1_star) is float:  # fast scalar path
+            r = self._entry(self._packed[2], v1_star)
+            if r == r:
+                return r
+        return self._eval(2, v1_star)
+
+
+def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
+    """Build a :class:`Curve`: the model for one material, fast, up to the speed a scene needs.
+
+    Parameters
+    ----------
+    eps_y : float
+        Sy/E' (-), > 0; validated range 0.0005-0.01 (outside: ValidityWarning).
+    nu : float
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5 (validated 0.2-0.45).
+    unloading : {"jcg", "etsion"}
+        Residual-interference model, JGM eq (35) or (33).
+    v_max : float, optional
+        Largest V1* = V1/V_c needed (-). Default: the model's limit, w_m* = 425. A larger value
+        raises ValueError naming the limit.
+    extrapolate : bool
+        Allow w_m* > 425 up to a/R = 1 (ExtrapolationWarning).
+
+    Returns
+    -------
+    Curve
+    """
+    eps_y = float(check_eps_y(eps_y))
+    nu = float(check_nu(nu))
+    if v_max is not None:
+        v_max = float(check_velocity(v_max, "v_max"))
+    warn_if_outside_validated(eps_y, nu)
+    data = build_curve_data(eps_y, nu, unloading, v_max, extrapolate)
+    if extrapolate and data.v_max > v1_star_limit(eps_y, nu):
+        import warnings
+        from ._validation import ExtrapolationWarning
+        warnings.warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (extrapolated)",
+                      ExtrapolationWarning, stacklevel=2)
+    return Curve(eps_y, nu, unloading, data)

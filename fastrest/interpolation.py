@@ -1,0 +1,100 @@
+"""Piecewise-polynomial interpolation on cells indexed by the bits of the float.
+
+The fast paths tabulate smooth functions of V1* on (1.9^1.25, v_max]. Cells follow the binary
+representation of V1*: each octave [2^E, 2^(E+1)) is split into 2^K equal cells, so the cell of a
+positive float v is ``(bits(v) >> (52 - K)) - base``: an integer shift, no logarithm (the log is the
+dominant cost of a uniform-in-log grid). Cells are therefore geometric across octaves and uniform
+within one, with relative width between 2^-K and 2^(1-K).
+
+Each cell stores one 64-byte row ``[center, 1/half_width, c0, ..., c5]``; the value is the degree-5
+polynomial sum c_k u^k in u = (v - center)/half_width in [-1, 1], interpolating the function at the
+cell's 6 Chebyshev points (first kind, so never at the cell's ends, where the JG law switches
+branch). The first cell starts exactly at V1* = 1.9^1.25 and the last ends at v_max, so no cell
+straddles the kink at w* = 1.9 or the end of the domain.
+"""
+import math
+
+import numba as nb
+import numpy as np
+from llvmlite import ir
+from numba.core import types
+from numba.extending import intrinsic
+
+DEGREE = 5
+ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
+MANTISSA_BITS = 52
+
+# Chebyshev points of the first kind on [-1, 1] and the map from values there to monomial coefficients.
+CHEB_U = np.cos(np.pi * (np.arange(DEGREE + 1)[::-1] + 0.5) / (DEGREE + 1))
+VALUES_TO_COEFFS = np.linalg.inv(np.vander(CHEB_U, DEGREE + 1, increasing=True))
+
+
+@intrinsic
+def float_bits(typingctx, x):
+    """Reinterpret a float64 as its int64 bit pattern (an LLVM bitcast: free)."""
+    if not isinstance(x, types.Float) or x.bitwidth != 64:
+        return None
+    sig = types.int64(types.float64)
+
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.IntType(64))
+
+    return sig, codegen
+
+
+def cell_key(v, bits_per_octave):
+    """Python twin of the kernels' raw cell key: (bits of v) >> (52 - K)."""
+    return int(np.float64(v).view(np.int64)) >> (MANTISSA_BITS - bits_per_octave)
+
+
+def cell_edges(v_lo, v_hi, bits_per_octave):
+    """Cells covering [v_lo, v_hi] (v_lo > 0): (base key, array of [lo, hi] per cell).
+
+    The first cell is cut to start at v_lo and the last to end at v_hi.
+    """
+    shift = MANTISSA_BITS - bits_per_octave
+    base = cell_key(v_lo, bits_per_octave)
+    top = cell_key(v_hi, bits_per_octave)
+    keys = np.arange(base, top + 1, dtype=np.int64)
+    lo = (keys << shift).view(np.float64).copy()
+    hi = ((keys + 1) << shift).view(np.float64).copy()
+    lo[0] = v_lo
+    hi[-1] = v_hi
+    if hi[-1] <= lo[-1]:  # v_hi is exactly a cell's start: drop that empty cell
+        lo, hi = lo[:-1], hi[:-1]
+    return base, np.stack([lo, hi], axis=1)
+
+
+def chebyshev_nodes(edges):
+    """The Chebyshev points of every cell, shape (ncell, DEGREE + 1), increasing."""
+    center = 0.5 * (edges[:, 0] + edges[:, 1])
+    half = 0.5 * (edges[:, 1] - edges[:, 0])
+    return center[:, None] + half[:, None] * CHEB_U[None, :]
+
+
+def fit_cells(edges, values):
+    """Rows [center, 1/half_width, c0..c5] from function values at :func:`chebyshev_nodes`.
+
+    ``values`` has shape (..., ncell, DEGREE + 1); the result (..., ncell, ROW).
+    """
+    center = 0.5 * (edges[:, 0] + edges[:, 1])
+    half = 0.5 * (edges[:, 1] - edges[:, 0])
+    coeffs = values @ VALUES_TO_COEFFS.T
+    rows = np.empty(values.shape[:-1] + (ROW,))
+    rows[..., 0] = center
+    rows[..., 1] = 1.0 / half
+    rows[..., 2:] = coeffs
+    return rows
+
+
+@nb.njit(cache=True, inline="always")
+def cell_index(v, shift, base):
+    """Index of the cell holding v > 0 (no bounds check)."""
+    return (float_bits(v) >> shift) - base
+
+
+@nb.njit(cache=True, inline="always")
+def horner_row(rows, i, v):
+    """Evaluate row i's polynomial at v."""
+    u = (v - rows[i, 0]) * rows[i, 1]
+    return rows[i, 2] + u * (rows[i, 3] + u * (rows[i, 4] + u * (rows[i, 5] + u * (rows[i, 6] + u * rows[i, 7]))))

@@ -1,0 +1,565 @@
+"""Multi-material tables: generation (Numba, both cores), HDF5 storage, loading and evaluation.
+
+A table holds, on a grid over eps_y and nu, everything the fast multi-material path needs:
+
+* ``W_star`` (eps_y, nu, omega_star): the normalised energy (W_ep)* = 1 - F(w*) of JGM eq (25),
+  up to w* = 425 (by composite Gauss-Legendre quadrature, :mod:`fastrest.energy`);
+* ``omega_m_star``, ``e_jcg``, ``loss_jcg``, ``e_etsion``, ``loss_etsion`` (eps_y, nu, cell, node):
+  the direct solver's w_m*, e and 1 - e^2 at the Chebyshev points of bit-indexed cells in V1*
+  (:mod:`fastrest.interpolation`) from 1.9^1.25 up to the largest V1* any grid material allows.
+
+Evaluation at (V1*, eps_y, nu): the degree-5 polynomial of V1*'s cell at each of the 4 x 4 nearest
+material nodes, combined with cubic Lagrange weights in eps_y and nu (uniform grids). V1* <= 1.9^1.25
+uses the exact closed forms (no table). Nodes are computed past w* = 425 where a neighbour needs it
+(the same formulas, up to a/R = 1), but a query whose interpolated w_m* exceeds 425 is refused.
+"""
+import hashlib
+import json
+import math
+import os
+from collections import namedtuple
+from pathlib import Path
+
+import numba as nb
+import numpy as np
+
+from . import _hdf5
+from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check_nu, check_eps_y,
+                          check_velocity, warn_if_outside_validated)
+from ._version import __version__
+from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
+from .curve import closed_form
+from .direct import impact_array, v1_star_limit
+from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
+from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, VALUES_TO_COEFFS, cell_edges, cell_index,
+                            chebyshev_nodes)
+from .unloading import ETSION, JCG, restitution_kernel, unloading_code
+
+QUANTITIES = ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion")
+QUANTITY_META = {
+    "omega_m_star": ("1", "normalised maximum interference omega_m/omega_c (JGM eq 29, 31)"),
+    "e_jcg": ("1", "coefficient of restitution, JCG unloading (JGM eqs 35, 38)"),
+    "loss_jcg": ("1", "dissipated fraction 1 - e^2, JCG unloading"),
+    "e_etsion": ("1", "coefficient of restitution, Etsion unloading (JGM eqs 33, 38)"),
+    "loss_etsion": ("1", "dissipated fraction 1 - e^2, Etsion unloading"),
+}
+#: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
+OMEGA_LIMIT_TOL = 1e-9
+OMEGA_LIMIT = OMEGA_M_STAR_MAX * (1.0 + OMEGA_LIMIT_TOL)
+OMEGA_GRID_HERTZ = 20  # nodes of the W* grid on [0, 1.9]
+OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
+
+#: Default grid of the shipped table (validated range of JGM; spacing chosen by measurement,
+#: bench/table_resolution.py).
+DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=56,
+                    nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=6, bits_per_octave=3,
+                    c_eps_y_map_rate=30.0)
+
+
+def default_table_path():
+    """The shipped default table: inside the installed package, or ``tables/`` of a source tree."""
+    here = Path(__file__).resolve().parent
+    for p in (here / "_tables" / "default.h5", here.parent / "tables" / "default.h5"):
+        if p.exists():
+            return p
+    raise FileNotFoundError("fastrest's default table is missing (expected fastrest/_tables/default.h5 "
+                            "or tables/default.h5); rebuild it with `fastrest build --default`")
+
+
+def cache_dir():
+    """User cache for tables of other grids: $FASTREST_CACHE_DIR, else $XDG_CACHE_HOME/fastrest."""
+    d = os.environ.get("FASTREST_CACHE_DIR")
+    if not d:
+        d = os.path.join(os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "fastrest")
+    return Path(d)
+
+
+def grid_key(grid):
+    """Cache key of a grid: format version + a hash of the generation parameters."""
+    blob = json.dumps({"format_version": _hdf5.FORMAT_VERSION, **normalise_grid(grid)}, sort_keys=True)
+    return f"v{_hdf5.FORMAT_VERSION}-{hashlib.sha256(blob.encode()).hexdigest()[:16]}"
+
+
+def normalise_grid(grid=None, **overrides):
+    """Fill in defaults and validate a grid specification; returns a plain dict."""
+    g = dict(DEFAULT_GRID)
+    g.update(grid or {})
+    g.update(overrides)
+    unknown = set(g) - set(DEFAULT_GRID)
+    if unknown:
+        raise ValueError(f"unknown grid parameter(s) {sorted(unknown)}; valid: {sorted(DEFAULT_GRID)}")
+    for k in ("n_eps_y", "n_nu"):
+        g[k] = int(g[k])
+    for k, m in (("n_eps_y", STENCIL_EPS), ("n_nu", STENCIL_NU)):
+        if g[k] < m:
+            raise ValueError(f"{k} must be >= {m} (the interpolation stencil's size); got {g[k]}")
+    g["bits_per_octave"] = int(g["bits_per_octave"])
+    if not 1 <= g["bits_per_octave"] <= 10:
+        raise ValueError(f"bits_per_octave must be in [1, 10]; got {g['bits_per_octave']}")
+    for k in ("eps_y_min", "eps_y_max", "nu_min", "nu_max", "c_eps_y_map_rate"):
+        g[k] = float(g[k])
+    if not g["c_eps_y_map_rate"] >= 0:
+        raise ValueError(f"c_eps_y_map_rate must be >= 0; got {g['c_eps_y_map_rate']}")
+    check_eps_y(g["eps_y_min"], "eps_y_min")
+    check_nu(g["nu_min"], "nu_min")
+    if not 0.0 < g["nu_max"] <= 0.5:
+        raise ValueError(f"nu_max must be in (0, 0.5]; got {g['nu_max']}")
+    if not g["eps_y_max"] > g["eps_y_min"]:
+        raise ValueError("eps_y_max must be > eps_y_min")
+    if not g["nu_max"] > g["nu_min"]:
+        raise ValueError("nu_max must be > nu_min")
+    return g
+
+
+# --- generation -------------------------------------------------------------------------------
+
+@nb.njit(cache=True, parallel=True)
+def _generate_row(eps_row, nu_nodes, v_nodes, omega_grid, out, w_star):
+    """Fill out[q, j, k] (quantities at V1* = v_nodes[k]) and w_star[j, :] for (eps_row[j], nu_j)."""
+    for j in nb.prange(nu_nodes.size):
+        nu = nu_nodes[j]
+        eps_y = eps_row[j]
+        # Neighbours in an interpolation stencil may need w* > 425, even past a/R = 1 (for a
+        # material whose own w_m* <= 425): there the formulas serve as a smooth extension.
+        w_hi = 4.0 * OMEGA_M_STAR_MAX
+        w = np.empty(v_nodes.size)
+        omega_m_sorted_kernel(v_nodes, eps_y, nu, w_hi, w)
+        for k in range(v_nodes.size):
+            out[0, j, k] = w[k]
+            for m in range(2):
+                e, loss, _, _ = restitution_kernel(v_nodes[k], w[k], w[k] - 1.0, eps_y, nu, m)
+                out[1 + 2 * m, j, k] = e
+                out[2 + 2 * m, j, k] = loss
+        # W* = 1 - F on the omega grid (cumulative quadrature above 1.9)
+        C = c_of_nu(nu)
+        B = area_exponent(eps_y)
+        f = F_SWITCH
+        prev = W_SWITCH
+        for k in range(omega_grid.size):
+            z = omega_grid[k]
+            if z <= W_SWITCH:
+                w_star[j, k] = 1.0 - z**2.5
+            elif z >= omega_star_limit_kernel(eps_y, nu):
+                w_star[j, k] = np.nan
+            else:
+                f += 2.5 * jg_integral(prev, z, eps_y, nu, C, B)
+                prev = z
+                w_star[j, k] = 1.0 - f
+
+
+def yield_parameter(eps_y, nu):
+    """s = C(nu) eps_y, the table's first material axis (a/R = (pi/2) s sqrt(A*), JGM eqs 5, 12).
+
+    The law depends on eps_y mostly through a/R, i.e. through s: on a grid uniform in (s, nu) the
+    remaining dependence on nu is very smooth, where on an (eps_y, nu) grid both axes carry the
+    fast variation of cos(pi a/R) at large w* (bench/table_resolution.py).
+    """
+    return 1.295 * np.exp(0.736 * np.asarray(nu)) * eps_y
+
+
+def xi_range(g):
+    """The s axis is uniform in xi = expm1(k s)/k (k = c_eps_y_map_rate; xi = s for k = 0), denser
+    where s, and with it a/R, is large and the law varies fastest (bench/table_resolution.py)."""
+    k = g["c_eps_y_map_rate"]
+    lo = yield_parameter(g["eps_y_min"], g["nu_min"])
+    hi = yield_parameter(g["eps_y_max"], g["nu_max"])
+    return (np.expm1(k * lo) / k, np.expm1(k * hi) / k) if k > 0 else (lo, hi)
+
+
+def s_of_xi(xi, k):
+    return np.log1p(k * xi) / k if k > 0 else xi
+
+
+def grid_axes(g):
+    """The axes and cell layout of a normalised grid."""
+    nus = np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
+    s = s_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
+    eps = s[:, None] / yield_parameter(1.0, nus)[None, :]  # eps_y of every table node
+    # V1* range: up to the largest w* = 425 speed over the grid's materials
+    v_top = max(v1_star_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
+                for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
+    base, edges = cell_edges(V_SWITCH, v_top, g["bits_per_octave"])
+    omega = np.concatenate([np.linspace(0.0, W_SWITCH, OMEGA_GRID_HERTZ),
+                            np.geomspace(W_SWITCH, OMEGA_M_STAR_MAX, OMEGA_GRID_JG + 1)[1:]])
+    return s, eps, nus, v_top, base, edges, omega
+
+
+def generate(grid=None, progress=None):
+    """Compute a table's arrays (no I/O). ``progress``: None = bar if a terminal, False = none."""
+    g = normalise_grid(grid)
+    s, eps, nus, v_top, base, edges, omega = grid_axes(g)
+    eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y"])  # W* grid: plain eps_y
+    nodes = chebyshev_nodes(edges)
+    flat = nodes.ravel()
+    vals = np.empty((len(QUANTITIES), s.size, nus.size, flat.size))
+    w_star = np.empty((s.size, nus.size, omega.size))
+    rows = range(s.size)
+    if progress is not False:
+        try:
+            from tqdm import tqdm
+            rows = tqdm(rows, desc="fastrest build", unit="eps_y row", disable=None)
+        except ImportError:
+            pass
+    for i in rows:
+        out = np.empty((len(QUANTITIES), nus.size, flat.size))
+        _generate_row(eps[i], nus, flat, omega, out, np.empty((nus.size, omega.size)))
+        vals[:, i] = out
+        _generate_row(np.full(nus.size, eps_w[i]), nus, flat[:0], omega, out[:, :, :0], w_star[i])
+    v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
+    return dict(grid=g, c_eps_y=s, eps_y=eps_w, nu=nus, v_top=v_top, base=base, edges=edges, nodes=nodes,
+                omega_star=omega, W_star=w_star, v1_star_max=v_max,
+                values=vals.reshape(vals.shape[:3] + nodes.shape))
+
+
+# --- evaluation -------------------------------------------------------------------------------
+
+TableData = namedtuple("TableData", ["s_rate", "xi0", "inv_h_xi", "n_s", "nu0", "inv_h_nu", "n_nu",
+                                     "eps_lo", "eps_hi", "nu_lo", "nu_hi", "shift", "base", "v_top",
+                                     "v_safe", "cells", "coef"])
+TableData.__doc__ = """Numba-friendly data of a :class:`Table` (see :mod:`fastrest.jit`).
+
+eps_y enters through s = C(nu) eps_y and xi = expm1(s_rate s)/s_rate, uniform from xi0 with
+spacing 1/inv_h_xi.
+cells: (ncell, 2) [center, 1/half_width] of each V1* cell; coef: (5, ncell, n_eps, n_nu, 6)
+polynomial coefficients of omega_m_star, e_jcg, loss_jcg, e_etsion, loss_etsion; v_safe: below this
+V1* every material of the table has w_m* <= 425.
+"""
+
+
+#: Interpolation stencils across materials (points per axis). The JG law varies with eps_y through
+#: cos(pi a/R), a/R ~ eps_y w^0.6, which at w* ~ 425 spans half a period over the validated range:
+#: a 6-point (quintic) stencil in eps_y reaches 1e-10 where a cubic needs ~4x the nodes
+#: (bench/table_resolution.py). nu acts only through C(nu): a cubic is enough.
+STENCIL_EPS = 6
+STENCIL_NU = 6
+
+
+@nb.njit(cache=True, inline="always")
+def _first_node(s, m, n):
+    i = int(math.floor(s)) - (m // 2 - 1)
+    if i < 0:
+        return 0
+    if i > n - m:
+        return n - m
+    return i
+
+
+@nb.njit(cache=True, inline="always")
+def _lagrange4(x, x0, inv_h, n):
+    """First index and weights of the 4-node Lagrange stencil at x on a uniform grid."""
+    s = (x - x0) * inv_h
+    i = _first_node(s, 4, n)
+    t = s - i
+    t1, t2, t3 = t - 1.0, t - 2.0, t - 3.0
+    return i, (-t1 * t2 * t3 / 6.0, t * t2 * t3 * 0.5, -t * t1 * t3 * 0.5, t * t1 * t2 / 6.0)
+
+
+@nb.njit(cache=True, inline="always")
+def _lagrange6(x, x0, inv_h, n):
+    """First index and weights of the 6-node Lagrange stencil at x on a uniform grid."""
+    s = (x - x0) * inv_h
+    i = _first_node(s, 6, n)
+    t = s - i
+    t1, t2, t3, t4, t5 = t - 1.0, t - 2.0, t - 3.0, t - 4.0, t - 5.0
+    return i, (-t1 * t2 * t3 * t4 * t5 / 120.0, t * t2 * t3 * t4 * t5 / 24.0,
+               -t * t1 * t3 * t4 * t5 / 12.0, t * t1 * t2 * t4 * t5 / 12.0,
+               -t * t1 * t2 * t3 * t5 / 24.0, t * t1 * t2 * t3 * t4 / 120.0)
+
+
+@nb.njit(cache=True)
+def table_value(tab, q, v, eps_y, nu):
+    """Quantity q (0 w_m*, 1 e_jcg, 2 loss_jcg, 3 e_etsion, 4 loss_etsion) at (V1*, eps_y, nu).
+
+    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425) or for invalid input.
+    """
+    if not (eps_y >= tab.eps_lo and eps_y <= tab.eps_hi and nu >= tab.nu_lo and nu <= tab.nu_hi):
+        return np.nan
+    if not v > V_SWITCH:
+        if v >= 0.0:
+            r = closed_form(v, 0 if q < 3 else 1)
+            return r[0] if q == 0 else r[1 + (q + 1) % 2]
+        return np.nan
+    if not v <= tab.v_top:
+        return np.nan
+    cell = cell_index(v, tab.shift, tab.base)
+    u = (v - tab.cells[cell, 0]) * tab.cells[cell, 1]
+    s = 1.295 * math.exp(0.736 * nu) * eps_y
+    xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
+    i, we = _lagrange6(xi, tab.xi0, tab.inv_h_xi, tab.n_s)
+    j, wn = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    if v > tab.v_safe and q != 0:
+        if not _stencil_sum(tab.coef, 0, cell, i, j, u, we, wn) <= OMEGA_LIMIT:
+            return np.nan
+    r = _stencil_sum(tab.coef, q, cell, i, j, u, we, wn)
+    if q == 0 and not r <= OMEGA_LIMIT:
+        return np.nan
+    return r
+
+
+@nb.njit(cache=True, inline="always")
+def _stencil_sum(coef, q, cell, i, j, u, we, wn):
+    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one Horner."""
+    c0 = c1 = c2 = c3 = c4 = c5 = 0.0
+    for a in range(STENCIL_EPS):
+        for b in range(STENCIL_NU):
+            w = we[a] * wn[b]
+            c = coef[q, cell, i + a, j + b]
+            c0 += w * c[0]
+            c1 += w * c[1]
+            c2 += w * c[2]
+            c3 += w * c[3]
+            c4 += w * c[4]
+            c5 += w * c[5]
+    return c0 + u * (c1 + u * (c2 + u * (c3 + u * (c4 + u * c5))))
+
+
+@nb.njit(cache=True)
+def _table_array(tab, q, v, eps_y, nu, out):
+    for k in range(v.size):
+        out[k] = table_value(tab, q, v[k], eps_y[k], nu[k])
+
+
+class Table:
+    """A loaded multi-material table (see :func:`load_table`).
+
+    Methods broadcast over (v1_star, eps_y, nu); each point may have its own material.
+
+    Attributes
+    ----------
+    data : TableData
+        Numba-friendly data for :mod:`fastrest.jit` (``fastrest.jit.e_table(data, v, eps_y, nu)``).
+    grid : dict
+        Generation parameters.
+    attrs : dict
+        The file's root attributes (provenance, measured error).
+    path : str or None
+    """
+
+    def __init__(self, gen, attrs=None, path=None):
+        g = gen["grid"]
+        eps, nus, edges = gen["eps_y"], gen["nu"], gen["edges"]
+        center = 0.5 * (edges[:, 0] + edges[:, 1])
+        half = 0.5 * (edges[:, 1] - edges[:, 0])
+        coef = gen["values"] @ VALUES_TO_COEFFS.T  # (5, n_eps, n_nu, ncell, 6)
+        coef = np.ascontiguousarray(coef.transpose(0, 3, 1, 2, 4))
+        xi0, xi1 = xi_range(g)
+        self.data = TableData(
+            g["c_eps_y_map_rate"], float(xi0), float((gen["c_eps_y"].size - 1) / (xi1 - xi0)),
+            int(gen["c_eps_y"].size),
+            float(nus[0]), float((nus.size - 1) / (nus[-1] - nus[0])), int(nus.size),
+            float(eps[0]), float(eps[-1]), float(nus[0]), float(nus[-1]),
+            MANTISSA_BITS - g["bits_per_octave"], int(gen["base"]), float(gen["v_top"]),
+            float(np.min(gen["v1_star_max"])), np.ascontiguousarray(np.stack([center, 1.0 / half], 1)),
+            coef)
+        self.grid = g
+        self.gen = gen
+        self.attrs = attrs or {}
+        self.path = path
+
+    def __repr__(self):
+        g = self.grid
+        return (f"Table(eps_y=[{g['eps_y_min']}, {g['eps_y_max']}] x {g['n_eps_y']}, "
+                f"nu=[{g['nu_min']}, {g['nu_max']}] x {g['n_nu']}, cells={self.data.cells.shape[0]}, "
+                f"path={self.path!r})")
+
+    def _eval(self, q, v1_star, eps_y, nu):
+        (v, e, n), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
+        out = np.empty(v.size)
+        _table_array(self.data, q, v, e, n, out)
+        bad = np.isnan(out)
+        if bad.any():
+            self._raise(v[bad], e[bad], n[bad])
+        warn_if_outside_validated(e, n, stacklevel=4)
+        return shaped(out, shape)
+
+    def _raise(self, v, e, n):
+        check_velocity(v, "v1_star")
+        check_eps_y(e)
+        check_nu(n)
+        d = self.data
+        for name, x, lo, hi in (("eps_y", e, d.eps_lo, d.eps_hi), ("nu", n, d.nu_lo, d.nu_hi)):
+            out = (x < lo) | (x > hi)
+            if out.any():
+                raise ValueError(f"{name} = {x[out][0]!r} is outside this table's range [{lo}, {hi}] "
+                                 "(use fastrest.direct, fastrest.curve, or build a wider table)")
+        v0, e0, n0 = float(v[0]), float(e[0]), float(n[0])
+        lim = v1_star_limit(e0, n0)
+        if v0 > lim:
+            raise ValueError(f"v1_star = {v0!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit "
+                             f"(JGM section 3.3); for eps_y = {e0!r}, nu = {n0!r} that limit is "
+                             f"V1* = {lim:.10g}. fastrest.direct and fastrest.curve accept extrapolate=True")
+        raise ValueError(f"v1_star = {v0!r} at eps_y = {e0!r}, nu = {n0!r} lies within the interpolation "
+                         f"error of the w_m* = {OMEGA_M_STAR_MAX:g} limit (V1* = {lim:.10g}) or outside "
+                         "this table's coverage")
+
+    def omega_m_star(self, v1_star, eps_y, nu):
+        """Interpolated w_m* (-); see :func:`fastrest.direct.omega_m_star` for the parameters."""
+        return self._eval(0, v1_star, eps_y, nu)
+
+    def e_star(self, v1_star, eps_y, nu, unloading="jcg"):
+        """Interpolated e (-); see :func:`fastrest.direct.e_star`."""
+        return self._eval(1 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
+
+    def loss_star(self, v1_star, eps_y, nu, unloading="jcg"):
+        """Interpolated 1 - e^2 (-); see :func:`fastrest.direct.loss_star`."""
+        return self._eval(2 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
+
+    # --- accuracy against the direct solver ---
+    def measure_error(self, n_points=4000, seed=12345):
+        """Worst relative error of every quantity against the direct solver (dict).
+
+        Random points uniform in (eps_y, nu) over the table and log-uniform in V1* in (1, V1*_max]
+        of each material, plus the hard cases (V1* -> 1, both sides of 1.9^1.25, V1*_max). For the
+        Etsion loss, which changes sign, the error is relative to max(|1 - e^2|, 1e-3).
+        """
+        v, e, n = sample_points(self.grid, n_points, seed)
+        ref = np.empty((5, v.size))
+        got = np.empty((5, v.size))
+        for m in (JCG, ETSION):
+            sol = np.empty((5, v.size))
+            impact_array(v, e, n, m, False, sol)
+            if m == JCG:
+                ref[0] = sol[0]
+            ref[1 + 2 * m] = sol[1]
+            ref[2 + 2 * m] = sol[2]
+        for q in range(5):
+            _table_array(self.data, q, v, e, n, got[q])
+        errs = {}
+        for q, name in enumerate(QUANTITIES):
+            floor = 1e-3 if name == "loss_etsion" else 0.0
+            den = np.maximum(np.abs(ref[q]), floor)
+            ok = den > 0
+            err = np.abs(got[q] - ref[q])
+            rel = np.where(ok, err / np.where(ok, den, 1.0), err)
+            k = int(np.nanargmax(rel)) if np.isfinite(rel).all() else int(np.argmax(~np.isfinite(rel)))
+            errs[name] = {"max_rel_error": float(rel[k]), "at_v1_star": float(v[k]),
+                          "at_eps_y": float(e[k]), "at_nu": float(n[k])}
+        return errs
+
+
+def sample_points(grid, n_points, seed):
+    """Test points over a table's domain (fixed seed): random plus hard cases."""
+    rng = np.random.default_rng(seed)
+    g = normalise_grid(grid)
+    e = rng.uniform(g["eps_y_min"], g["eps_y_max"], n_points)
+    n = rng.uniform(g["nu_min"], g["nu_max"], n_points)
+    vmax = np.array([v1_star_limit(a, b) for a, b in zip(e, n)])
+    v = np.exp(rng.uniform(0.0, 1.0, n_points) * np.log(vmax))
+    hard = np.array([1.0, 1 + 1e-12, 1 + 1e-9, V_SWITCH * (1 - 1e-12), V_SWITCH * (1 + 1e-12),
+                     V_SWITCH * (1 + 1e-6), 3.0, 60.0])
+    k = len(hard)
+    v = np.concatenate([v, hard, vmax[:k]])
+    e = np.concatenate([e, e[:k], e[:k]])
+    n = np.concatenate([n, n[:k], n[:k]])
+    return v, e, n
+
+
+# --- files ------------------------------------------------------------------------------------
+
+MODEL_ATTRS = {
+    "title": "fastrest table: Jackson-Green-Marghitu (2010) coefficient of restitution",
+    "references": "Jackson R.L., Green I., Marghitu D.B. (2010) Nonlinear Dyn. 60:217-229, "
+                  "doi:10.1007/s11071-009-9591-z",
+    "source": "fastrest direct solver (composite Gauss-Legendre quadrature + Newton)",
+    "model": {"paper": "Jackson, Green & Marghitu 2010", "doi": "10.1007/s11071-009-9591-z",
+              "loading": "Jackson & Green 2005 elasto-plastic law, JGM eqs 8-15",
+              "energy": "JGM eqs 22-31", "unloading_jcg": "Jackson-Chusoipin-Green fit, JGM eq 35",
+              "unloading_etsion": "Etsion et al., JGM eqs 33-34", "restitution": "JGM eq 38"},
+}
+
+
+def write(gen, path, errors=None):
+    """Write generated arrays to an HDF5 table file (atomically)."""
+    g = gen["grid"]
+    ncell = gen["edges"].shape[0]
+    axes = {
+        "eps_y": (gen["eps_y"], "1", "yield strain Sy/E' (JGM eq 11)"),
+        "c_eps_y": (gen["c_eps_y"], "1", "C(nu) eps_y (JGM eqs 5, 11): restitution grid axis"),
+        "nu": (gen["nu"], "1", "Poisson's ratio of the yielding material"),
+        "cell": (gen["edges"][:, 0], "1", "V1* = V1/V_c at the start of each interpolation cell"),
+        "node": (CHEB_U, "1", "Chebyshev point of the cell, in [-1, 1] across the cell"),
+        "omega_star": (gen["omega_star"], "1", "normalised interference omega/omega_c"),
+    }
+    datasets = {
+        "W_star": (gen["W_star"], ("eps_y", "nu", "omega_star"), "1",
+                   "normalised elasto-plastic energy (W_ep)* = 1 - F(w*), JGM eq 25"),
+        "v1_star_max": (gen["v1_star_max"], ("eps_y", "nu"), "1", "V1* at which w_m* = 425"),
+        "cell_end": (gen["edges"][:, 1], ("cell",), "1", "V1* at the end of each cell"),
+        "v1_star_nodes": (gen["nodes"], ("cell", "node"), "1", "V1* of each tabulated point"),
+    }
+    for q, name in enumerate(QUANTITIES):
+        units, long_name = QUANTITY_META[name]
+        datasets[name] = (gen["values"][q], ("c_eps_y", "nu", "cell", "node"), units, long_name)
+    attrs = dict(MODEL_ATTRS)
+    attrs.update({
+        "grid": g,
+        "cells": {"bits_per_octave": g["bits_per_octave"], "degree": DEGREE, "count": ncell,
+                  "first_key": int(gen["base"]), "v1_star_top": float(gen["v_top"])},
+        "quadrature": {"rule": "composite Gauss-Legendre in ln w", "order": GL_ORDER,
+                       "panel_width_ln_w": PANEL_WIDTH, "newton_step_tolerance_ln_w": 1e-9},
+        "validated_range": {"eps_y": list(EPS_Y_VALIDATED), "nu": list(NU_VALIDATED),
+                            "omega_m_star_max": OMEGA_M_STAR_MAX},
+        "history": f"built by fastrest {__version__} (fastrest build)",
+    })
+    if errors is not None:
+        attrs["measured_error"] = errors
+    _hdf5.write_table(path, axes, datasets, attrs)
+
+
+def build(path=None, grid=None, progress=None, measure=True):
+    """Generate a table, measure its error against the direct solver, write it; return the Table.
+
+    ``path`` None writes to the user cache (:func:`cache_dir`) under :func:`grid_key`.
+    """
+    gen = generate(grid, progress=progress)
+    table = Table(gen)
+    errors = table.measure_error() if measure else None
+    if path is None:
+        path = cache_dir() / f"{grid_key(gen['grid'])}.h5"
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write(gen, path, errors)
+    table.attrs = {"measured_error": errors} if errors else {}
+    table.path = str(path)
+    return table
+
+
+def read(path):
+    """Read a table file into a :class:`Table` (validates format version and checksum)."""
+    td = _hdf5.read_table(path)
+    a = td.attrs
+    try:
+        g = normalise_grid(a["grid"])
+        cells = a["cells"]
+        ds = td.datasets
+        gen = dict(grid=g, c_eps_y=td.axes["c_eps_y"], eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=cells["v1_star_top"],
+                   base=cells["first_key"], edges=np.stack([td.axes["cell"], ds["cell_end"]], 1),
+                   nodes=ds["v1_star_nodes"], omega_star=td.axes["omega_star"], W_star=ds["W_star"],
+                   v1_star_max=ds["v1_star_max"], values=np.stack([ds[q] for q in QUANTITIES]))
+        if cells["degree"] != DEGREE or not np.array_equal(td.axes["node"], CHEB_U):
+            raise ValueError("cell polynomial degree or nodes differ from this fastrest's")
+    except (KeyError, TypeError, ValueError) as exc:
+        raise _hdf5.TableFileError(f"{path}: not a fastrest restitution table ({exc})") from exc
+    return Table(gen, attrs=a, path=str(path))
+
+
+_LOADED = {}
+
+
+def load_table(path=None):
+    """Load a table once per process (default: the shipped one) and return the :class:`Table`."""
+    key = str(Path(path).resolve()) if path is not None else None
+    if key not in _LOADED:
+        _LOADED[key] = read(default_table_path() if path is None else path)
+    return _LOADED[key]
+
+
+def cached_table(grid=None, progress=None):
+    """A table for any grid: the shipped one if it matches, else the user cache, built on first use."""
+    g = normalise_grid(grid)
+    if g == normalise_grid(None):
+        return load_table()
+    path = cache_dir() / f"{grid_key(g)}.h5"
+    if not path.exists():
+        build(path, g, progress=progress)
+    return load_table(path)

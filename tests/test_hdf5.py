@@ -1,0 +1,302 @@
+"""Tests of the HDF5 table storage layer (fastrest._hdf5)."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import h5py
+import numpy as np
+import pytest
+
+import fastrest
+from fastrest import _hdf5
+from fastrest._hdf5 import FORMAT_NAME, FORMAT_VERSION, TableFileError, read_table, write_table
+
+
+def example():
+    """Axes, datasets and attributes covering every supported kind of value."""
+    velocity = np.linspace(0.1, 10.0, 5)
+    nu = np.array([0.2, 0.3, 0.45])
+    # Values whose bits a lossy round trip would change: -0.0, NaN, inf, a subnormal.
+    e = np.arange(15, dtype=np.float64).reshape(5, 3) / 7.0
+    e[0, :] = [-0.0, np.nan, np.inf]
+    e[1, 0] = 5e-324
+    axes = {
+        "velocity": (velocity, "m s-1", "impact velocity"),
+        "nu": (nu, "1", "Poisson's ratio"),
+    }
+    datasets = {
+        "restitution": (e, ("velocity", "nu"), "1", "coefficient of restitution"),
+        "regime": (np.arange(5, dtype=np.int32), ("velocity",), "1", "regime code"),
+        "omega_star_switch": (np.float64(1.9), (), "1", "switch interference"),
+    }
+    attrs = {
+        "title": "test table",
+        "references": "doi:10.1007/s11071-009-9591-z",
+        "n_points": 15,
+        "tolerance": 1e-12,
+        "limits": np.array([0.0005, 0.01]),
+        "grid": {"velocity": {"n": 5, "spacing": "linear"}, "nu": [0.2, 0.3, 0.45]},
+    }
+    return axes, datasets, attrs
+
+
+def write_example(path):
+    write_table(path, *example())
+    return path
+
+
+def test_round_trip(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    axes, datasets, attrs = example()
+    table = read_table(path)
+
+    assert table.path == str(path)
+    assert set(table.axes) == set(axes)
+    assert set(table.datasets) == set(datasets)
+    for name, (values, units, long_name) in axes.items():
+        assert table.axes[name].dtype == np.float64
+        assert table.axes[name].tobytes() == values.tobytes()
+        assert table.units[name] == units
+        assert table.long_names[name] == long_name
+    for name, (values, dims, units, long_name) in datasets.items():
+        got = table.datasets[name]
+        assert got.dtype == np.asarray(values).dtype
+        assert got.shape == np.shape(values)
+        assert got.tobytes() == np.asarray(values).tobytes()  # bitwise, NaN and -0.0 included
+        assert table.dims[name] == dims
+        assert table.units[name] == units
+        assert table.long_names[name] == long_name
+
+    for key, value in attrs.items():
+        if isinstance(value, np.ndarray):
+            np.testing.assert_array_equal(table.attrs[key], value)
+        else:
+            assert table.attrs[key] == value
+    assert table.attrs["grid"]["velocity"]["n"] == 5  # JSON decoded back into a dict
+    assert table.attrs["format"] == FORMAT_NAME
+    assert table.attrs["format_version"] == FORMAT_VERSION
+    assert table.attrs["fastrest_version"] == fastrest.__version__
+    assert len(table.attrs["checksum"]) == 64
+    assert table.attrs["checksum_algorithm"] == "sha256"
+
+    # What h5dump, h5netcdf and xarray see: named scales attached to each dimension,
+    # CF attributes, contiguous uncompressed storage.
+    with h5py.File(path, "r") as f:
+        for name in axes:
+            assert h5py.h5ds.is_scale(f[name].id)
+            assert f[name].attrs["NAME"] == name.encode()
+        for name, (_, dims, units, long_name) in datasets.items():
+            dset = f[name]
+            assert not h5py.h5ds.is_scale(dset.id)
+            assert [[s.name for s in dim.values()] for dim in dset.dims] == [
+                ["/" + axis] for axis in dims]
+            assert dset.attrs["units"] == units
+            assert dset.attrs["long_name"] == long_name
+            assert dset.chunks is None and dset.compression is None
+        assert f.attrs["title"] == "test table"
+
+
+def test_float32_and_integer_axis_stored_as_float64(tmp_path):
+    path = tmp_path / "table.h5"
+    write_table(path, {"x": (np.arange(3), "m", "x")},
+                {"y": (np.ones(3, dtype=np.float32), ("x",), "1", "y")}, {})
+    table = read_table(path)
+    assert table.axes["x"].dtype == np.float64
+    assert table.datasets["y"].dtype == np.float64
+
+
+def test_writing_twice_gives_identical_bytes(tmp_path):
+    first = write_example(tmp_path / "a.h5")
+    # HDF5 timestamps, if any were written, have a resolution of one second.
+    start = int(time.time())
+    while int(time.time()) == start:
+        time.sleep(0.01)
+    second = write_example(tmp_path / "b.h5")
+    assert first.read_bytes() == second.read_bytes()
+    before = first.read_bytes()
+    write_example(first)  # rewriting over an existing file
+    assert first.read_bytes() == before
+
+
+def test_new_file_is_not_private_to_the_owner(tmp_path):
+    # mkstemp makes 0o600 files; the table must get the usual umask-based mode instead.
+    path = write_example(tmp_path / "table.h5")
+    umask = os.umask(0)
+    os.umask(umask)
+    assert (os.stat(path).st_mode & 0o777) == (0o666 & ~umask)
+
+
+def test_truncated_file(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    with open(path, "r+b") as fh:
+        fh.truncate(os.path.getsize(path) // 2)
+    with pytest.raises(TableFileError, match="truncated") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value)
+
+
+def test_flipped_data_byte_fails_checksum(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    with h5py.File(path, "r") as f:
+        offset = f["restitution"].id.get_offset()
+        size = f["restitution"].id.get_storage_size()
+    assert offset is not None and size > 0
+    with open(path, "r+b") as fh:
+        fh.seek(offset + size // 2)
+        byte = fh.read(1)[0]
+        fh.seek(offset + size // 2)
+        fh.write(bytes([byte ^ 0xFF]))
+    with pytest.raises(TableFileError, match="checksum") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value)
+
+
+def test_missing_checksum(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    with h5py.File(path, "a") as f:
+        del f.attrs["checksum"]
+    with pytest.raises(TableFileError, match="checksum"):
+        read_table(path)
+
+
+def test_missing_axis(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    with h5py.File(path, "a") as f:
+        del f["nu"]
+    with pytest.raises(TableFileError, match="missing axis") as excinfo:
+        read_table(path)
+    assert "restitution" in str(excinfo.value)
+
+
+def test_foreign_hdf5_file(tmp_path):
+    path = tmp_path / "foreign.h5"
+    with h5py.File(path, "w") as f:
+        f["data"] = np.arange(4.0)
+    with pytest.raises(TableFileError, match="not a fastrest table") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value)
+
+
+def test_newer_format_version(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    with h5py.File(path, "a") as f:
+        f.attrs["format_version"] = FORMAT_VERSION + 1
+    with pytest.raises(TableFileError) as excinfo:
+        read_table(path)
+    message = str(excinfo.value)
+    assert str(path) in message
+    assert f"format version {FORMAT_VERSION + 1}" in message
+    assert f"format version {FORMAT_VERSION} " in message
+    assert "upgrade fastrest" in message and "rebuild" in message
+
+
+def test_not_an_hdf5_file(tmp_path):
+    path = tmp_path / "random.h5"
+    path.write_bytes(np.random.default_rng(0).bytes(4096))
+    with pytest.raises(TableFileError, match="HDF5") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value)
+
+
+def test_missing_file(tmp_path):
+    path = tmp_path / "nowhere.h5"
+    with pytest.raises(TableFileError, match="does not exist") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value)
+
+
+def test_bad_input_is_rejected_before_writing(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    before = path.read_bytes()
+    axes, datasets, attrs = example()
+    for bad in (np.array([True, False, True, False, True]),
+                np.array(["a", "b", "c", "d", "e"], dtype=object)):
+        datasets["bad"] = (bad, ("velocity",), "1", "bad")
+        with pytest.raises(TypeError):
+            write_table(path, axes, datasets, attrs)
+    assert path.read_bytes() == before
+    assert list(tmp_path.glob("*.tmp")) == []
+
+
+def test_exception_while_writing_keeps_old_file(tmp_path, monkeypatch):
+    path = write_example(tmp_path / "table.h5")
+    before = path.read_bytes()
+    calls = []
+    original = _hdf5._write_variable
+
+    def failing_write(f, name, *args):
+        calls.append(name)
+        if len(calls) == 3:
+            # Prove the failure happens midway, with the temporary file on disk.
+            assert len(list(tmp_path.glob("*.tmp"))) == 1
+            raise RuntimeError("simulated failure while writing")
+        return original(f, name, *args)
+
+    monkeypatch.setattr(_hdf5, "_write_variable", failing_write)
+    axes, datasets, attrs = example()
+    datasets["restitution"] = (np.zeros((5, 3)), ("velocity", "nu"), "1", "new content")
+    with pytest.raises(RuntimeError, match="simulated"):
+        write_table(path, axes, datasets, attrs)
+
+    assert len(calls) == 3
+    assert path.read_bytes() == before
+    assert read_table(path).long_names["restitution"] == "coefficient of restitution"
+    assert list(tmp_path.glob("*.tmp")) == []
+
+
+CHILD = textwrap.dedent("""
+    import sys, time
+    import numpy as np
+    from fastrest import _hdf5
+
+    target, marker = sys.argv[1], sys.argv[2]
+    original = _hdf5._write_variable
+    written = []
+
+    def write_then_stall(f, name, *args):
+        written.append(name)
+        if len(written) == 50:
+            open(marker, "w").close()  # tell the parent we are inside write_table
+            time.sleep(60)             # and wait there to be killed
+        return original(f, name, *args)
+
+    _hdf5._write_variable = write_then_stall
+    x = np.linspace(0.0, 1.0, 10_000)
+    datasets = {f"d{i:03d}": (x * i, ("x",), "1", f"dataset {i}") for i in range(200)}
+    _hdf5.write_table(target, {"x": (x, "1", "x")}, datasets, {"title": "new"})
+""")
+
+
+def test_killed_writer_keeps_old_file(tmp_path):
+    """A writer killed midway leaves the old table intact; a stray *.tmp file may remain."""
+    path = write_example(tmp_path / "table.h5")
+    before = path.read_bytes()
+    marker = tmp_path / "inside-write_table"
+    package_root = os.path.dirname(os.path.dirname(os.path.abspath(fastrest.__file__)))
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [package_root, env.get("PYTHONPATH")]))
+    proc = subprocess.Popen([sys.executable, "-c", CHILD, str(path), str(marker)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 60
+        while not marker.exists():
+            if proc.poll() is not None:
+                pytest.fail(f"writer exited early: {proc.communicate()[1].decode()}")
+            assert time.monotonic() < deadline, "writer never reached write_table"
+            time.sleep(0.01)
+    finally:
+        proc.kill()
+        proc.wait()
+    if sys.platform != "win32":
+        assert proc.returncode == -signal.SIGKILL
+
+    assert path.read_bytes() == before
+    assert read_table(path).attrs["title"] == "test table"
+    # The killed writer's temporary file is left behind; it is never taken for a table.
+    stray = list(tmp_path.glob("*.tmp"))
+    assert len(stray) == 1
+    with pytest.raises(TableFileError):
+        read_table(stray[0])
