@@ -1,4 +1,22 @@
-"""fastrest: the Jackson-Green-Marghitu (2010) coefficient of restitution, fast."""
+"""fastrest: the Jackson-Green-Marghitu (2010) coefficient of restitution, fast.
+
+Data flow: :mod:`~fastrest.materials` (material -> critical values, eqs 4-7, 23-28) ->
+:mod:`~fastrest.contact` (normalised JG law, eqs 8-15) -> :mod:`~fastrest.energy` (W*, w_m*,
+eqs 22-31) -> :mod:`~fastrest.unloading` (eqs 32-38) -> :mod:`~fastrest.direct` (exact solver) ->
+:mod:`~fastrest.curve` and :mod:`~fastrest.tables` (fast paths) -> :mod:`~fastrest.jit` (inside
+your own Numba code). Comparison models: :mod:`~fastrest.models`.
+"""
 from ._version import __version__
 from ._validation import ValidityWarning, ExtrapolationWarning
 from .materials import Material, Impact, poisson_factor, critical_velocity_ratios
+from .contact import P_star, A_star, omega_star_limit
+from .energy import W_star, loading_energy
+from . import direct
+from .curve import Curve, curve
+from .tables import Table, load_table, omega_m_star, e_star, loss_star
+from ._hdf5 import TableFileError
+
+__all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",
+           "poisson_factor", "critical_velocity_ratios", "P_star", "A_star", "W_star",
+           "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Table", "load_table",
+           "omega_m_star", "e_star", "loss_star", "TableFileError"]

@@ -44,13 +44,15 @@ def check_finite_positive(x, name, unit):
     return a
 
 
-def check_nu(nu, name="nu"):
-    """Poisson's ratio: the model is defined for 0 <= nu < 0.5."""
+def check_nu(nu, name="nu", allow_half=False):
+    """Poisson's ratio: the model is defined for 0 <= nu < 0.5 (<= 0.5 for the pure formulas of C)."""
     a = as_float_array(nu, name)
-    bad = ~((a >= 0.0) & (a < 0.5))  # also catches NaN
+    hi_ok = (a <= 0.5) if allow_half else (a < 0.5)
+    bad = ~((a >= 0.0) & hi_ok)  # also catches NaN
     if np.any(bad):
         v = a[bad].flat[0] if a.ndim else a
-        raise ValueError(f"{name} (Poisson's ratio) must be in [0, 0.5); got {v!r}")
+        rng = "[0, 0.5]" if allow_half else "[0, 0.5)"
+        raise ValueError(f"{name} (Poisson's ratio) must be in {rng}; got {v!r}")
     return a
 
 

@@ -18,6 +18,7 @@ import numpy as np
 from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, check_velocity, warn_if_outside_validated
 from .direct import raise_out_of_range, v1_star_limit, w_upper
 from .energy import V_SWITCH, omega_m_sorted_kernel
+from .contact import W_SWITCH
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, chebyshev_nodes, fit_cells,
                             horner_row)
 from .unloading import ETSION, JCG, UNLOADING_MODELS, jcg_residual_ratio, restitution_kernel, unloading_code
@@ -41,7 +42,7 @@ def closed_form(v, model):
     if v <= 1.0:
         return v**0.8, 1.0, 0.0
     lv = math.log(v)
-    w = math.exp(0.8 * lv)
+    w = min(math.exp(0.8 * lv), W_SWITCH)
     if model == ETSION:
         return w, 1.0, 0.0
     r = jcg_residual_ratio(math.expm1(0.8 * lv))

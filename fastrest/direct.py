@@ -66,6 +66,8 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     check_nu(nu)
     warn_if_outside_validated(eps_y, nu, stacklevel=4)
     out = np.empty((5, v.size))
+    if v.size == 0:
+        return out, shape
     impact_array(v, eps_y, nu, model, bool(extrapolate), out)
     bad = np.isnan(out[0])
     if np.any(bad):

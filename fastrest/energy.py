@@ -63,11 +63,12 @@ def f_star_kernel(w, eps_y, nu):
 def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
     """Solve ln F(w_m) = target (> ln F(1.9)) by Newton's method in t = ln w, from (w, f = F(w)).
 
-    (w, f) must lie at or below the root. Hertz bounds P*_JG from above and ln F is increasing and
-    concave in t above w = 1.9, so the iterates rise monotonically to the root; each new F is the
-    previous one plus the integral over the (short) step. Returns (w_m, w_last, f_last) where
-    (w_last, f_last) is the last point evaluated, still below the root, from which a caller
-    marching through increasing speeds continues. w_m is NaN if it would exceed e^hi.
+    Start at or below the root: Hertz bounds P*_JG from above, and where ln F is concave in t (most
+    of the range) the iterates rise monotonically to the root; near a/R = 1 it turns convex and
+    a step may overshoot, which the next step corrects (steps are clamped at e^hi). Each new F is
+    the previous one plus the integral over the (short) step. Returns (w_m, w_last, f_last) where
+    (w_last, f_last) is the last point evaluated, from which a caller marching through increasing
+    speeds continues. w_m is NaN if it would exceed e^hi.
     """
     t = math.log(w)
     for _ in range(60):
@@ -98,7 +99,7 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
     if not v >= 0.0:
         return np.nan
     if v <= V_SWITCH:
-        w = v**0.8
+        w = min(v**0.8, W_SWITCH)  # v = 1.9^1.25 exactly would round to 1.9 + 1 ulp
         return w if w <= w_hi else np.nan
     if not w_hi > W_SWITCH:
         return np.nan

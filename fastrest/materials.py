@@ -25,14 +25,15 @@ def poisson_factor(nu):
     Parameters
     ----------
     nu : float or array_like
-        Poisson's ratio of the material that yields first, 0 <= nu < 0.5 (dimensionless).
+        Poisson's ratio of the material that yields first, 0 <= nu <= 0.5 (dimensionless; the
+        formula accepts the incompressible limit 0.5 that Table 2 prints, the contact model does not).
 
     Returns
     -------
     float or ndarray
         C (dimensionless).
     """
-    nu = check_nu(nu)
+    nu = check_nu(nu, allow_half=True)
     c = 1.295 * np.exp(0.736 * nu)
     return float(c) if c.ndim == 0 else c
 
@@ -88,7 +89,7 @@ def critical_velocity_ratios(nu):
     Parameters
     ----------
     nu : float or array_like
-        Poisson's ratio, 0 <= nu < 0.5.
+        Poisson's ratio, 0 <= nu <= 0.5.
 
     Returns
     -------

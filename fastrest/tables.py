@@ -365,6 +365,8 @@ class Table:
     def _eval(self, q, v1_star, eps_y, nu):
         (v, e, n), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
         out = np.empty(v.size)
+        if v.size == 0:
+            return shaped(out, shape)
         _table_array(self.data, q, v, e, n, out)
         bad = np.isnan(out)
         if bad.any():
@@ -563,3 +565,25 @@ def cached_table(grid=None, progress=None):
     if not path.exists():
         build(path, g, progress=progress)
     return load_table(path)
+
+
+# --- the default-table fast API (fastrest.omega_m_star, e_star, loss_star) -----------------------
+
+def omega_m_star(v1_star, eps_y, nu):
+    """w_m* = omega_m/omega_c (-) from the default table; each point may have its own material.
+
+    Broadcasts over all three arguments. Same domain rules as :func:`fastrest.direct.omega_m_star`
+    (ValueError outside the table or past w_m* = 425; ValidityWarning outside the validated range),
+    without ``extrapolate``. Accuracy: the ``measured_error`` attribute of the table file.
+    """
+    return load_table().omega_m_star(v1_star, eps_y, nu)
+
+
+def e_star(v1_star, eps_y, nu, unloading="jcg"):
+    """Coefficient of restitution (-) from the default table; see :func:`omega_m_star`."""
+    return load_table().e_star(v1_star, eps_y, nu, unloading)
+
+
+def loss_star(v1_star, eps_y, nu, unloading="jcg"):
+    """1 - e^2 (-) from the default table; see :func:`omega_m_star`."""
+    return load_table().loss_star(v1_star, eps_y, nu, unloading)

@@ -1,0 +1,158 @@
+"""Command line: ``fastrest e`` (the model for one impact), ``build``, ``info``, ``warmup``."""
+import argparse
+import json
+import math
+import sys
+import time
+import warnings
+
+import numpy as np
+
+
+def _cmd_e(args):
+    from . import direct
+    from .materials import Impact, Material
+
+    sphere = Material(args.E, args.nu, args.Sy, rho=args.rho)
+    flat = None
+    if args.flat_E is not None:
+        flat = Material(args.flat_E, args.flat_nu, args.flat_Sy if args.flat_Sy is not None else math.inf)
+    imp = Impact(sphere, args.R, flat=flat, mass=args.mass)
+    crit = imp.critical_values()
+    V = np.asarray(args.V, dtype=float)
+    v1 = V / imp.V_c
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        jcg = direct.solve(v1, imp.eps_y, imp.nu, "jcg", extrapolate=args.extrapolate)
+        ets = direct.solve(v1, imp.eps_y, imp.nu, "etsion", extrapolate=args.extrapolate)
+    rows = [{"V": float(a), "V1_star": float(b), "omega_m_star": float(c), "e_jcg": float(d),
+             "e_etsion": float(f), "V2_jcg": float(a * d)}
+            for a, b, c, d, f in zip(V, v1, jcg["omega_m_star"], jcg["e"], ets["e"])]
+    notes = sorted({str(w.message) for w in caught})
+    if args.json:
+        json.dump({"critical": crit, "impacts": rows, "warnings": notes}, sys.stdout, indent=2)
+        print()
+        return 0
+    print("Jackson, Green & Marghitu (2010): sphere on " + ("rigid flat" if flat is None else "elastic-plastic flat"))
+    units = {"E_eff": "Pa", "R_eff": "m", "mass": "kg", "nu": "-", "Sy": "Pa", "C": "-", "eps_y": "-",
+             "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": "J", "V_c": "m/s"}
+    for k, val in crit.items():
+        print(f"  {k:<8s} = {val:.6g} {units[k]}")
+    print()
+    print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s} {'e (JCG)':>10s} {'e (Etsion)':>10s}")
+    for r in rows:
+        print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g} {r['e_jcg']:10.6f} "
+              f"{r['e_etsion']:10.6f}")
+    for n in notes:
+        print(f"  warning: {n}")
+    return 0
+
+
+def _cmd_build(args):
+    from . import tables
+
+    grid = {k: getattr(args, k) for k in tables.DEFAULT_GRID if getattr(args, k, None) is not None}
+    if args.default:
+        if grid:
+            print("fastrest build: --default takes no grid options", file=sys.stderr)
+            return 2
+        out = args.out or "tables/default.h5"
+    else:
+        out = args.out
+    t0 = time.perf_counter()
+    table = tables.build(out, grid, progress=None if args.progress else False)
+    dt = time.perf_counter() - t0
+    print(f"wrote {table.path} in {dt:.1f} s")
+    for name, err in table.attrs.get("measured_error", {}).items():
+        print(f"  max relative error {name:<13s} {err['max_rel_error']:.2e}")
+    return 0
+
+
+def _cmd_info(args):
+    from . import _hdf5, tables
+
+    try:
+        t = tables.read(args.file)
+    except (_hdf5.TableFileError, OSError) as exc:
+        print(f"fastrest info: invalid table: {exc}", file=sys.stderr)
+        return 1
+    a = t.attrs
+    if args.json:
+        json.dump({k: v for k, v in a.items()}, sys.stdout, indent=2, default=str)
+        print()
+        return 0
+    print(f"{args.file}: {a['format']} version {a['format_version']}, written by fastrest {a['fastrest_version']}")
+    print(f"  model: {a['references']}")
+    g = a["grid"]
+    print(f"  grid: eps_y [{g['eps_y_min']}, {g['eps_y_max']}] ({g['n_eps_y']} nodes in C(nu) eps_y), "
+          f"nu [{g['nu_min']}, {g['nu_max']}] ({g['n_nu']}), {a['cells']['count']} cells in V1* "
+          f"(2^{g['bits_per_octave']} per octave, degree {a['cells']['degree']}) up to V1* = "
+          f"{a['cells']['v1_star_top']:.6g}")
+    q = a["quadrature"]
+    print(f"  quadrature: {q['rule']}, {q['order']} points per panel <= {q['panel_width_ln_w']} in ln w")
+    for name, err in a.get("measured_error", {}).items():
+        print(f"  max relative error {name:<13s} {err['max_rel_error']:.2e} at V1*={err['at_v1_star']:.6g} "
+              f"eps_y={err['at_eps_y']:.4g} nu={err['at_nu']:.4g}")
+    print(f"  checksum ({a['checksum_algorithm']}): {a['checksum']}")
+    return 0
+
+
+def _cmd_warmup(args):
+    """Compile (or load from Numba's cache) every kernel once."""
+    import fastrest
+
+    t0 = time.perf_counter()
+    fastrest.direct.e_star([2.0, 5.0], 0.005, 0.33)
+    c = fastrest.curve(0.005, 0.33, v_max=10.0)
+    c.e(5.0), c.e(np.array([5.0])), c.loss(np.array([5.0])), c.omega_m(np.array([5.0]))
+    fastrest.e_star([5.0], 0.005, 0.33)
+    print(f"fastrest kernels ready in {time.perf_counter() - t0:.2f} s")
+    return 0
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="fastrest", description=__doc__)
+    sub = p.add_subparsers(dest="cmd", required=True)
+
+    pe = sub.add_parser("e", help="coefficient of restitution of one sphere impact (SI units)")
+    pe.add_argument("--E", type=float, required=True, help="sphere Young's modulus (Pa)")
+    pe.add_argument("--nu", type=float, required=True, help="sphere Poisson's ratio")
+    pe.add_argument("--Sy", type=float, required=True, help="sphere yield strength (Pa)")
+    pe.add_argument("--R", type=float, required=True, help="sphere radius (m)")
+    pe.add_argument("--rho", type=float, help="sphere density (kg/m^3)")
+    pe.add_argument("--mass", type=float, help="mass of the moving body (kg); default from rho")
+    pe.add_argument("--flat-E", type=float, help="flat's Young's modulus (Pa); default: rigid flat")
+    pe.add_argument("--flat-nu", type=float, default=0.3, help="flat's Poisson's ratio")
+    pe.add_argument("--flat-Sy", type=float, help="flat's yield strength (Pa); default: never yields")
+    pe.add_argument("--V", type=float, nargs="+", required=True, help="impact speeds (m/s)")
+    pe.add_argument("--extrapolate", action="store_true", help="allow w_m* > 425 (up to a/R = 1)")
+    pe.add_argument("--json", action="store_true", help="machine-readable output")
+    pe.set_defaults(func=_cmd_e)
+
+    pb = sub.add_parser("build", help="build a multi-material table (HDF5)")
+    pb.add_argument("--out", help="output file (default: the user cache)")
+    pb.add_argument("--default", action="store_true", help="rebuild the shipped default table")
+    for k, typ in (("eps_y_min", float), ("eps_y_max", float), ("n_eps_y", int), ("nu_min", float),
+                   ("nu_max", float), ("n_nu", int), ("bits_per_octave", int), ("c_eps_y_map_rate", float)):
+        pb.add_argument("--" + k.replace("_", "-"), dest=k, type=typ)
+    pb.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
+    pb.set_defaults(func=_cmd_build)
+
+    pi = sub.add_parser("info", help="describe a table file; exit 1 if it is invalid")
+    pi.add_argument("file")
+    pi.add_argument("--json", action="store_true")
+    pi.set_defaults(func=_cmd_info)
+
+    pw = sub.add_parser("warmup", help="compile the Numba kernels into the cache")
+    pw.set_defaults(func=_cmd_warmup)
+
+    args = p.parse_args(argv)
+    try:
+        return args.func(args)
+    except ValueError as exc:
+        print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

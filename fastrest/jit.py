@@ -1,0 +1,47 @@
+"""Functions to call from your own ``@numba.njit`` code (rough-surface, multi-asperity, DEM loops).
+
+Build the data once in Python, pass it into your jitted function, and call these inside it::
+
+    import numba, numpy as np, fastrest
+    from fastrest import jit as frj
+
+    data = fastrest.curve(0.005, 0.33, v_max=200.0).data     # CurveData (a namedtuple)
+
+    @numba.njit(parallel=True)
+    def dissipated(data, v1_star, energy):
+        total = 0.0
+        for i in numba.prange(v1_star.size):
+            total += energy[i] * frj.loss_curve(data, v1_star[i])
+        return total
+
+All functions take V1* = V1/V_c (dimensionless) and return NaN for input outside the data's
+domain (negative or NaN speed, V1* > v_max, material outside a table): check with ``x != x`` or
+``np.isnan`` if your code can produce such input. Tables: ``fastrest.load_table().data``;
+``unloading`` is :data:`JCG` (eq 35) or :data:`ETSION` (eq 33).
+"""
+import numba as nb
+
+from .curve import CurveData, e_curve, loss_curve, omega_m_curve
+from .tables import TableData, table_value
+from .unloading import ETSION, JCG
+
+__all__ = ["CurveData", "TableData", "JCG", "ETSION", "omega_m_curve", "e_curve", "loss_curve",
+           "omega_m_table", "e_table", "loss_table"]
+
+
+@nb.njit(cache=True)
+def omega_m_table(tab, v1_star, eps_y, nu):
+    """w_m* at (V1*, eps_y, nu) from a table's :class:`TableData`; NaN outside its domain."""
+    return table_value(tab, 0, v1_star, eps_y, nu)
+
+
+@nb.njit(cache=True)
+def e_table(tab, v1_star, eps_y, nu, unloading):
+    """e at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1). NaN outside the table."""
+    return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
+
+
+@nb.njit(cache=True)
+def loss_table(tab, v1_star, eps_y, nu, unloading):
+    """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1). NaN outside the table."""
+    return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
