@@ -12,11 +12,11 @@ from .materials import Material, Impact, poisson_factor, critical_velocity_ratio
 from .contact import P_star, A_star, omega_star_limit
 from .energy import W_star, loading_energy
 from . import direct
-from .curve import Curve, curve
+from .curve import Curve, curve, Scene, scene
 from .tables import Table, load_table, omega_m_star, e_star, loss_star
 from ._hdf5 import TableFileError
 
 __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",
            "poisson_factor", "critical_velocity_ratios", "P_star", "A_star", "W_star",
-           "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Table", "load_table",
+           "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
            "omega_m_star", "e_star", "loss_star", "TableFileError"]

@@ -39,7 +39,7 @@ def check_finite_positive(x, name, unit):
     a = as_float_array(x, name)
     bad = ~(np.isfinite(a) & (a > 0))
     if np.any(bad):
-        v = a[bad].flat[0] if a.ndim else a
+        v = float(a[bad].flat[0] if a.ndim else a)
         raise ValueError(f"{name} must be finite and > 0 {unit}; got {v!r}")
     return a
 
@@ -50,7 +50,7 @@ def check_nu(nu, name="nu", allow_half=False):
     hi_ok = (a <= 0.5) if allow_half else (a < 0.5)
     bad = ~((a >= 0.0) & hi_ok)  # also catches NaN
     if np.any(bad):
-        v = a[bad].flat[0] if a.ndim else a
+        v = float(a[bad].flat[0] if a.ndim else a)
         rng = "[0, 0.5]" if allow_half else "[0, 0.5)"
         raise ValueError(f"{name} (Poisson's ratio) must be in {rng}; got {v!r}")
     return a
@@ -66,7 +66,7 @@ def check_velocity(v, name, unit="(dimensionless, V1/Vc)"):
     a = as_float_array(v, name)
     bad = ~(np.isfinite(a) & (a >= 0))
     if np.any(bad):
-        val = a[bad].flat[0] if a.ndim else a
+        val = float(a[bad].flat[0] if a.ndim else a)
         raise ValueError(f"{name} must be finite and >= 0 {unit}; got {val!r}")
     return a
 

@@ -131,14 +131,15 @@ def check_omega(w, eps_y, nu, name="w"):
     bad = ~(np.isfinite(w) & (w >= 0))
     if np.any(bad):
         raise ValueError(f"{name} (normalised interference omega/omega_c) must be finite and >= 0; "
-                         f"got {w[bad][0]!r}")
+                         f"got {float(w[bad][0])!r}")
     lim = np.array([omega_star_limit_kernel(e, n) for e, n in zip(eps_y, nu)]) if w.size else w
     past = w >= lim
     if np.any(past):
         i = int(np.flatnonzero(past)[0])
         raise ValueError(
-            f"{name} = {w[i]!r} is past the end of the Jackson-Green law: a/R reaches 1 at "
-            f"w* = {lim[i]:.6g} for eps_y = {eps_y[i]!r}, nu = {nu[i]!r} (eq 12 needs 0 < a/R < 1)")
+            f"{name} = {float(w[i])!r} is past the end of the Jackson-Green law: a/R reaches 1 at "
+            f"w* = {lim[i]:.6g} for eps_y = {float(eps_y[i])!r}, nu = {float(nu[i])!r} "
+            "(eq 12 needs 0 < a/R < 1)")
 
 
 def _law(kernel, w, eps_y, nu):

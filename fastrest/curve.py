@@ -270,3 +270,118 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
         warnings.warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (extrapolated)",
                       ExtrapolationWarning, stacklevel=2)
     return Curve(eps_y, nu, unloading, data)
+
+
+# --- scenes: several materials, one batch call ------------------------------------------------
+
+SceneData = namedtuple("SceneData", ["model", "v_max", "shift", "base", "offset", "omega_rows",
+                                     "e_rows", "loss_rows"])
+SceneData.__doc__ = """Numba-friendly data of a :class:`Scene`: the curves of several materials.
+
+Per material k: v_max[k], base[k] and the first row offset[k] of its cells in the concatenated
+*_rows arrays; model and shift are shared. See :func:`fastrest.jit.e_scene`.
+"""
+
+
+@nb.njit(cache=True)
+def scene_value(data, what, k, v):
+    """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) of material k at V1*; NaN outside its curve."""
+    if not (k >= 0 and k < data.v_max.size):
+        return np.nan
+    if v > V_SWITCH:
+        if v <= data.v_max[k]:
+            rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
+            return horner_row(rows, cell_index(v, data.shift, data.base[k]) + data.offset[k], v)
+        return np.nan
+    if v >= 0.0:
+        return closed_form(v, data.model)[what]
+    return np.nan
+
+
+@nb.njit(cache=True)
+def _scene_array(data, what, k, v, out):
+    for i in range(v.size):
+        out[i] = scene_value(data, what, k[i], v[i])
+
+
+class Scene:
+    """The curves of several materials (a scene), evaluated per point by material index.
+
+    Build with :func:`scene`. ``e(v1_star, material)`` evaluates point i with the curve of
+    material ``material[i]`` (integer index into the list given to :func:`scene`); both arguments
+    broadcast. ``data`` (:class:`SceneData`) is for :func:`fastrest.jit.e_scene` in Numba code.
+    """
+
+    def __init__(self, curves):
+        self.curves = list(curves)
+        if not self.curves:
+            raise ValueError("a scene needs at least one material")
+        models = {c.data.model for c in self.curves}
+        if len(models) != 1:
+            raise ValueError("all curves of a scene must use the same unloading model")
+        shifts = {c.data.shift for c in self.curves}
+        if len(shifts) != 1:
+            raise ValueError("all curves of a scene must use the same cells per octave")
+        sizes = [c.data.e_rows.shape[0] for c in self.curves]
+        offset = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
+        cat = [np.ascontiguousarray(np.concatenate([getattr(c.data, f) for c in self.curves]))
+               for f in ("omega_rows", "e_rows", "loss_rows")]
+        self.data = SceneData(models.pop(), np.array([c.v_max for c in self.curves]), shifts.pop(),
+                              np.array([c.data.base for c in self.curves], dtype=np.int64), offset, *cat)
+
+    def __len__(self):
+        return len(self.curves)
+
+    def __repr__(self):
+        return f"Scene({len(self.curves)} materials, unloading={self.curves[0].unloading!r})"
+
+    def _eval(self, what, v1_star, material):
+        v = np.asarray(v1_star, dtype=np.float64)
+        k = np.asarray(material)
+        if not np.issubdtype(k.dtype, np.integer):
+            raise ValueError(f"material must be integer indices into the scene's {len(self)} materials")
+        v, k = np.broadcast_arrays(v, k)
+        shape = v.shape
+        vf = np.ascontiguousarray(v).ravel()
+        kf = np.ascontiguousarray(k, dtype=np.int64).ravel()
+        out = np.empty(vf.size)
+        _scene_array(self.data, what, kf, vf, out)
+        bad = np.isnan(out)
+        if bad.any():
+            kb = kf[bad]
+            if ((kb < 0) | (kb >= len(self))).any():
+                raise ValueError(f"material index out of range [0, {len(self) - 1}]: {int(kb[0])}")
+            check_velocity(vf[bad], "v1_star")
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"v1_star = {float(vf[i])!r} is beyond v_max = {float(self.data.v_max[kf[i]])!r} "
+                             f"of material {int(kf[i])} (build the scene with a larger v_max)")
+        out = out.reshape(shape)
+        return float(out) if out.ndim == 0 else out
+
+    def omega_m(self, v1_star, material):
+        """w_m* (-) at V1* for each point's material index."""
+        return self._eval(0, v1_star, material)
+
+    def e(self, v1_star, material):
+        """Coefficient of restitution (-) at V1* for each point's material index."""
+        return self._eval(1, v1_star, material)
+
+    def loss(self, v1_star, material):
+        """1 - e^2 (-) at V1* for each point's material index."""
+        return self._eval(2, v1_star, material)
+
+
+def scene(materials, unloading="jcg", v_max=None, extrapolate=False):
+    """Build a :class:`Scene` from (eps_y, nu) pairs: one curve per material, only as far as needed.
+
+    Parameters
+    ----------
+    materials : sequence of (eps_y, nu)
+        Material parameters (-) of each material index 0, 1, ...
+    unloading : {"jcg", "etsion"}
+    v_max : float or sequence, optional
+        Largest V1* needed, for all materials or per material (default: each material's w_m* = 425).
+    """
+    materials = list(materials)
+    vm = [None] * len(materials) if v_max is None else np.broadcast_to(v_max, (len(materials),)).tolist()
+    return Scene([curve(e, n, unloading, v, extrapolate) for (e, n), v in zip(materials, vm)])

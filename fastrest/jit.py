@@ -21,11 +21,11 @@ domain (negative or NaN speed, V1* > v_max, material outside a table): check wit
 """
 import numba as nb
 
-from .curve import CurveData, e_curve, loss_curve, omega_m_curve
+from .curve import CurveData, SceneData, e_curve, loss_curve, omega_m_curve, scene_value
 from .tables import TableData, table_value
 from .unloading import ETSION, JCG
 
-__all__ = ["CurveData", "TableData", "JCG", "ETSION", "omega_m_curve", "e_curve", "loss_curve",
+__all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "loss_scene", "JCG", "ETSION", "omega_m_curve", "e_curve", "loss_curve",
            "omega_m_table", "e_table", "loss_table"]
 
 
@@ -45,3 +45,21 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
 def loss_table(tab, v1_star, eps_y, nu, unloading):
     """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1). NaN outside the table."""
     return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
+
+
+@nb.njit(cache=True)
+def omega_m_scene(scene, material, v1_star):
+    """w_m* of material index ``material`` of a :class:`fastrest.curve.SceneData`; NaN outside."""
+    return scene_value(scene, 0, material, v1_star)
+
+
+@nb.njit(cache=True)
+def e_scene(scene, material, v1_star):
+    """e of material index ``material`` of a scene at V1*; NaN outside its curve."""
+    return scene_value(scene, 1, material, v1_star)
+
+
+@nb.njit(cache=True)
+def loss_scene(scene, material, v1_star):
+    """1 - e^2 of material index ``material`` of a scene at V1*; NaN outside its curve."""
+    return scene_value(scene, 2, material, v1_star)

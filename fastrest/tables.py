@@ -382,7 +382,7 @@ class Table:
         for name, x, lo, hi in (("eps_y", e, d.eps_lo, d.eps_hi), ("nu", n, d.nu_lo, d.nu_hi)):
             out = (x < lo) | (x > hi)
             if out.any():
-                raise ValueError(f"{name} = {x[out][0]!r} is outside this table's range [{lo}, {hi}] "
+                raise ValueError(f"{name} = {float(x[out][0])!r} is outside this table's range [{lo}, {hi}] "
                                  "(use fastrest.direct, fastrest.curve, or build a wider table)")
         v0, e0, n0 = float(v[0]), float(e[0]), float(n[0])
         lim = v1_star_limit(e0, n0)

@@ -164,7 +164,7 @@ class _Law:
         lw = ctx.ln(w)
         # a/R = k sqrt(A*),  sqrt(A*) = exp(((1+B) ln w - B ln 1.9)/2)
         aR = self.k_aR * ctx.exp(((1 + self.B) * lw - self.B * _LN19) / 2)
-        if aR > 1:
+        if aR > 1 + _mpf("1e-30"):  # the end point w_max itself may round to 1 + tiny
             raise ValueError(
                 f"a/R = {float(aR):.6g} > 1 at w = {float(w):.6g}: the JG law (12) is "
                 f"undefined there (eps_y = {float(self.eps)!r}, w_max = {float(self.w_max):.6g})"

@@ -147,10 +147,6 @@ def test_reference_residual(ref_sample, unloading):
     assert worst_r <= 1e-12, r
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError,
-                   reason="tests/reference.py bug: at eps_y=0.01, nu=0.45 its last anchor segment "
-                          "ends at w_max (a/R = 1) and mpmath.quad evaluates P_jg where a/R rounds "
-                          "to 1 + tiny, so ref_F(425, 0.01, 0.45) raises")
 def test_reference_corner_of_validated_range():
     """eps_y = 0.01, nu = 0.45 is where a/R is largest at w_m = 425 (the law ends at w = 471.6)."""
     eps, nu = 0.01, 0.45
