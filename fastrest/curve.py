@@ -51,40 +51,35 @@ def closed_form(v, model):
 
 # --- scalar kernels on CurveData (the public njit API re-exports these) ----------------------
 
+@nb.njit(cache=True, inline="always")
+def cells_or_closed_form(rows, v_max, shift, base, model, what, v):
+    """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) at V1* = v: cells above 1.9^1.25, closed form
+    below; NaN for v < 0, NaN or v > v_max. The one evaluation rule of curves and scenes."""
+    if v > V_SWITCH:
+        if v <= v_max:
+            return horner_row(rows, cell_index(v, shift, base), v)
+        return np.nan
+    if v >= 0.0 and v <= v_max:
+        return closed_form(v, model)[what]
+    return np.nan
+
+
 @nb.njit(cache=True)
 def omega_m_curve(data, v):
     """w_m*(V1*) from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
-    if v > V_SWITCH:
-        if v <= data.v_max:
-            return horner_row(data.omega_rows, cell_index(v, data.shift, data.base), v)
-        return np.nan
-    if v >= 0.0:
-        return v**0.8
-    return np.nan
+    return cells_or_closed_form(data.omega_rows, data.v_max, data.shift, data.base, data.model, 0, v)
 
 
 @nb.njit(cache=True)
 def e_curve(data, v):
     """e(V1*) from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
-    if v > V_SWITCH:
-        if v <= data.v_max:
-            return horner_row(data.e_rows, cell_index(v, data.shift, data.base), v)
-        return np.nan
-    if v >= 0.0:
-        return closed_form(v, data.model)[1]
-    return np.nan
+    return cells_or_closed_form(data.e_rows, data.v_max, data.shift, data.base, data.model, 1, v)
 
 
 @nb.njit(cache=True)
 def loss_curve(data, v):
     """1 - e^2 at V1* from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
-    if v > V_SWITCH:
-        if v <= data.v_max:
-            return horner_row(data.loss_rows, cell_index(v, data.shift, data.base), v)
-        return np.nan
-    if v >= 0.0:
-        return closed_form(v, data.model)[2]
-    return np.nan
+    return cells_or_closed_form(data.loss_rows, data.v_max, data.shift, data.base, data.model, 2, v)
 
 
 @nb.njit(cache=True)
@@ -105,14 +100,9 @@ def _curve_array(data, what, v, out):
 # kernel directly with one packed array (row 0: v_max, shift, base, model, quantity).
 @nb.njit(cache=True)
 def _scalar_packed(packed, v):
-    what = int(packed[0, 4])
-    if v > V_SWITCH:
-        if v <= packed[0, 0]:
-            return horner_row(packed, cell_index(v, int(packed[0, 1]), int(packed[0, 2]) - 1), v)
-        return np.nan
-    if v >= 0.0:
-        return closed_form(v, int(packed[0, 3]))[what]
-    return np.nan
+    # row 0 is metadata, so cell i is row i + 1: base - 1
+    return cells_or_closed_form(packed, packed[0, 0], int(packed[0, 1]), int(packed[0, 2]) - 1,
+                                int(packed[0, 3]), int(packed[0, 4]), v)
 
 
 _SCALAR_SIG = (nb.float64[:, ::1], nb.float64)
@@ -288,14 +278,10 @@ def scene_value(data, what, k, v):
     """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) of material k at V1*; NaN outside its curve."""
     if not (k >= 0 and k < data.v_max.size):
         return np.nan
-    if v > V_SWITCH:
-        if v <= data.v_max[k]:
-            rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
-            return horner_row(rows, cell_index(v, data.shift, data.base[k]) + data.offset[k], v)
-        return np.nan
-    if v >= 0.0:
-        return closed_form(v, data.model)[what]
-    return np.nan
+    rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
+    # material k's cells start at row offset[k]: shift its base key accordingly
+    return cells_or_closed_form(rows, data.v_max[k], data.shift, data.base[k] - data.offset[k],
+                                data.model, what, v)
 
 
 @nb.njit(cache=True)

@@ -50,7 +50,8 @@ def cell_key(v, bits_per_octave):
 def cell_edges(v_lo, v_hi, bits_per_octave):
     """Cells covering [v_lo, v_hi] (v_lo > 0): (base key, array of [lo, hi] per cell).
 
-    The first cell is cut to start at v_lo and the last to end at v_hi.
+    The first cell is cut to start at v_lo and the last to end at v_hi (or, when v_hi is exactly a
+    cell's start, to span [v_hi, v_hi + 1 ulp], so that v_hi still has a cell).
     """
     shift = MANTISSA_BITS - bits_per_octave
     base = cell_key(v_lo, bits_per_octave)
@@ -59,9 +60,8 @@ def cell_edges(v_lo, v_hi, bits_per_octave):
     lo = (keys << shift).view(np.float64).copy()
     hi = ((keys + 1) << shift).view(np.float64).copy()
     lo[0] = v_lo
-    hi[-1] = v_hi
-    if hi[-1] <= lo[-1]:  # v_hi is exactly a cell's start: drop that empty cell
-        lo, hi = lo[:-1], hi[:-1]
+    # v_hi itself must index a cell: if it is exactly a cell's start, that cell spans one ulp
+    hi[-1] = v_hi if lo[-1] < v_hi else np.nextafter(v_hi, np.inf)
     return base, np.stack([lo, hi], axis=1)
 
 

@@ -319,6 +319,16 @@ def _table_array(tab, q, v, eps_y, nu, out):
         out[k] = table_value(tab, q, v[k], eps_y[k], nu[k])
 
 
+@nb.njit(cache=True, parallel=True)
+def _table_array_parallel(tab, q, v, eps_y, nu, out):
+    for k in nb.prange(v.size):
+        out[k] = table_value(tab, q, v[k], eps_y[k], nu[k])
+
+
+#: Batches at least this large use all cores (the threads' start-up costs ~10 us).
+PARALLEL_MIN_POINTS = 20000
+
+
 class Table:
     """A loaded multi-material table (see :func:`load_table`).
 
@@ -367,7 +377,8 @@ class Table:
         out = np.empty(v.size)
         if v.size == 0:
             return shaped(out, shape)
-        _table_array(self.data, q, v, e, n, out)
+        kernel = _table_array_parallel if v.size >= PARALLEL_MIN_POINTS else _table_array
+        kernel(self.data, q, v, e, n, out)
         bad = np.isnan(out)
         if bad.any():
             self._raise(v[bad], e[bad], n[bad])
