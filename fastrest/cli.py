@@ -9,10 +9,30 @@ import warnings
 import numpy as np
 
 
+def _model_names(values):
+    """Names given to ``e --model``/``--models``: repeatable, comma-separated, or ``all``."""
+    from .models import MODELS
+
+    names = []
+    for value in values or []:
+        for name in value.split(","):
+            name = name.strip()
+            if name == "all":
+                names.extend(MODELS)
+            elif name in MODELS:
+                names.append(name)
+            else:
+                raise ValueError(f"unknown comparison model {name!r}; choose from "
+                                 f"{', '.join(MODELS)} or 'all'")
+    return list(dict.fromkeys(names))
+
+
 def _cmd_e(args):
     from . import direct
+    from . import models
     from .materials import Impact, Material
 
+    names = _model_names(args.models)
     sphere = Material(args.E, args.nu, args.Sy, rho=args.rho)
     flat = None
     if args.flat_E is not None:
@@ -25,12 +45,19 @@ def _cmd_e(args):
         warnings.simplefilter("always")
         jcg = direct.solve(v1, imp.eps_y, imp.nu, "jcg", extrapolate=args.extrapolate)
         ets = direct.solve(v1, imp.eps_y, imp.nu, "etsion", extrapolate=args.extrapolate)
+        others = {n: np.atleast_1d(models.evaluate(n, imp, V)) for n in names}
     rows = [{"V": float(a), "V1_star": float(b), "omega_m_star": float(c), "e_jcg": float(d),
              "e_etsion": float(f), "V2_jcg": float(a * d)}
             for a, b, c, d, f in zip(V, v1, jcg["omega_m_star"], jcg["e"], ets["e"])]
+    for n, vals in others.items():
+        for r, x in zip(rows, vals):
+            r["e_" + n] = float(x)
     notes = sorted({str(w.message) for w in caught})
     if args.json:
-        json.dump({"critical": crit, "impacts": rows, "warnings": notes}, sys.stdout, indent=2)
+        out = {"critical": crit, "impacts": rows, "warnings": notes}
+        if names:
+            out["models"] = names
+        json.dump(out, sys.stdout, indent=2)
         print()
         return 0
     print("Jackson, Green & Marghitu (2010): sphere on " + ("rigid flat" if flat is None else "elastic-plastic flat"))
@@ -39,10 +66,16 @@ def _cmd_e(args):
     for k, val in crit.items():
         print(f"  {k:<8s} = {val:.6g} {units[k]}")
     print()
-    print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s} {'e (JCG)':>10s} {'e (Etsion)':>10s}")
+    widths = {n: max(10, len(n) + 4) for n in names}
+    extra_head = "".join(f" {'e (' + n + ')':>{widths[n]}s}" for n in names)
+    print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s} {'e (JCG)':>10s} {'e (Etsion)':>10s}{extra_head}")
     for r in rows:
+        extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" for n in names)
         print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g} {r['e_jcg']:10.6f} "
-              f"{r['e_etsion']:10.6f}")
+              f"{r['e_etsion']:10.6f}{extra}")
+    if names:
+        print("  comparison models: fastrest.models.evaluate (see docs/model.md); values are the "
+              "published formulas, not clipped to e <= 1")
     for n in notes:
         print(f"  warning: {n}")
     return 0
@@ -110,6 +143,24 @@ def _cmd_warmup(args):
     return 0
 
 
+def _cmd_figures(args):
+    """Draw the paper's Figs 2-8 as PNG files."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        print("fastrest figures: matplotlib is required; install it with: pip install fastrest[plot]",
+              file=sys.stderr)
+        return 1
+    from .figures import write_all
+
+    t0 = time.perf_counter()
+    paths = write_all(args.out, dpi=args.dpi)
+    for p in paths:
+        print(f"wrote {p}")
+    print(f"{len(paths)} figures in {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(prog="fastrest", description=__doc__)
     sub = p.add_subparsers(dest="cmd", required=True)
@@ -127,6 +178,10 @@ def main(argv=None):
     pe.add_argument("--V", type=float, nargs="+", required=True, help="impact speeds (m/s)")
     pe.add_argument("--extrapolate", action="store_true", help="allow w_m* > 425 (up to a/R = 1)")
     pe.add_argument("--json", action="store_true", help="machine-readable output")
+    pe.add_argument("--model", "--models", dest="models", action="append", metavar="NAME",
+                    help="also print a comparison model's e (fastrest.models.evaluate): one of "
+                         "thornton, weir_tallon, chang_ling, wu, jgm_fit_jcg, jgm_fit_etsion, or all; "
+                         "repeatable or comma-separated")
     pe.set_defaults(func=_cmd_e)
 
     pb = sub.add_parser("build", help="build a multi-material table (HDF5)")
@@ -145,6 +200,11 @@ def main(argv=None):
 
     pw = sub.add_parser("warmup", help="compile the Numba kernels into the cache")
     pw.set_defaults(func=_cmd_warmup)
+
+    pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)")
+    pf.add_argument("--out", required=True, help="output directory (created if needed)")
+    pf.add_argument("--dpi", type=int, default=150, help="resolution (default 150)")
+    pf.set_defaults(func=_cmd_figures)
 
     args = p.parse_args(argv)
     try:

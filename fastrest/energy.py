@@ -63,9 +63,10 @@ def f_star_kernel(w, eps_y, nu):
 def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
     """Solve ln F(w_m) = target (> ln F(1.9)) by Newton's method in t = ln w, from (w, f = F(w)).
 
-    Start at or below the root: Hertz bounds P*_JG from above, and where ln F is concave in t (most
-    of the range) the iterates rise monotonically to the root; near a/R = 1 it turns convex and
-    a step may overshoot, which the next step corrects (steps are clamped at e^hi). Each new F is
+    Start near the root (callers start from the Hertz solution V1*^0.8, which lies below it where
+    P*_JG < Hertz, i.e. for nu above about 0.32, or from the previous root when marching). Where
+    ln F is concave in t (most of the range) the iterates from below rise monotonically to the
+    root; elsewhere a step may overshoot, which the next steps correct (steps are clamped at e^hi). Each new F is
     the previous one plus the integral over the (short) step. Returns (w_m, w_last, f_last) where
     (w_last, f_last) is the last point evaluated, from which a caller marching through increasing
     speeds continues. w_m is NaN if it would exceed e^hi.
@@ -94,7 +95,7 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
     """w_m(V1*) solving F(w_m) = V1*^2 (eq 29); NaN if V1* < 0 or w_m would exceed w_hi.
 
     Closed form w_m = V1*^0.8 for V1* <= 1.9^1.25; above, :func:`newton_from_below` started at
-    the Hertz lower bound V1*^0.8.
+    the Hertz solution V1*^0.8 (a lower bound where P*_JG < Hertz).
     """
     if not v >= 0.0:
         return np.nan

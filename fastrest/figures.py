@@ -153,16 +153,17 @@ def figure3(ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
         ax.plot(v, direct.omega_m_star(v, eps, nu), color=col, lw=1.6,
                 label=f"JGM (eq 29), {_eps_label(eps)}")
     ax.axhline(425.0, color="k", lw=0.8, ls=":")
-    ax.annotate(r"model limit $\omega_m^*$ = 425", (1.2, 425.0), xytext=(0, 4),
+    ax.annotate(r"model limit $\omega_m^*$ = 425", (1.1, 425.0), xytext=(0, 4),
                 textcoords="offset points", fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(1.0, 1200.0)
+    ax.set_ylim(0.8, 800.0)
     ax.set_xlabel(r"normalised impact speed $V_1^* = V_1/V_c$ (eq 30) [-]")
     ax.set_ylabel(r"normalised maximum interference $\omega_m^* = \omega_m/\omega_c$ (eq 31) [-]")
     ax.set_title(rf"Fig. 3: maximum interference ($\nu$ = {nu:g})")
     ax.grid(True, which="major", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     return fig, ax
 
 
@@ -195,7 +196,7 @@ def figure4(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
     ax.set_ylabel(r"residual interference ratio $\omega_{res}/\omega_m$ [-]")
     ax.set_title("Fig. 4: residual interference after unloading")
     ax.grid(True, which="major", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     return fig, ax
 
 
@@ -251,9 +252,10 @@ def figure6(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
     e40 = 2.08 * vp**-0.25
     e41 = 0.62 * (vp * eps_y) ** -0.5
     below = vp <= v_fp
-    ax.plot(v, M.wu(v, eps_y), color=_COLOURS["wu"], lw=1.6, label=_LABELS["wu"])
+    # e = 1 below V_c (as this model); drawn from V_c up, so the jump to 2.08 at V_c is not a line
+    ax.plot(vp, M.wu(vp, eps_y), color=_COLOURS["wu"], lw=1.6, label=_LABELS["wu"])
     ax.plot(vp[~below], e40[~below], color=_COLOURS["wu"], lw=1.0, ls=":",
-            label="Wu et al. eq (40) above $V_{fp}$ / eq (41) below")
+            label="Wu et al., eqs (40), (41) outside their ranges")
     ax.plot(vp[below], e41[below], color=_COLOURS["wu"], lw=1.0, ls=":")
     ax.axvline(v_fp, color="k", lw=0.9, ls="--")
     ax.annotate(rf"$V_{{fp}}$ (eq 39) = {v_fp:.0f} $V_c$", (v_fp, 1.12), xytext=(-4, 0),
@@ -295,9 +297,12 @@ def _figure_kharaz(ax, flat, fig_no, v_max, n):
     for model in ("jcg", "etsion"):
         ax.plot(V, imp.e(V, unloading=model), color=_COLOURS[model], lw=1.9, label=_LABELS[model])
     for model, ls in (("thornton", "-."), ("wu", "--"), ("weir_tallon", ":")):
-        ax.plot(V, M.evaluate(model, imp, V), color=_COLOURS[model], lw=1.5, ls=ls, label=_LABELS[model])
+        e = np.asarray(M.evaluate(model, imp, V))
+        if model == "wu":  # e = 1 up to V_c, then eq (40) jumps to 2.08: do not draw the jump
+            e = np.where(V > imp.V_c, e, np.nan)
+        ax.plot(V, e, color=_COLOURS[model], lw=1.5, ls=ls, label=_LABELS[model])
     ax.axvline(imp.V_c, color="k", lw=0.8, ls=":")
-    ax.annotate(rf"$V_c$ = {imp.V_c * 1e3:.0f} mm/s", (imp.V_c, 0.04), xytext=(3, 0),
+    ax.annotate(rf"$V_c$ (eq 28) = {imp.V_c * 1e3:.0f} mm/s", (imp.V_c, 0.12), xytext=(3, 0),
                 textcoords="offset points", fontsize=8)
     flat_name = {"aluminium": "an aluminium", "steel": "a steel"}[flat]
     table = {"aluminium": 3, "steel": 4}[flat]
@@ -305,15 +310,15 @@ def _figure_kharaz(ax, flat, fig_no, v_max, n):
             f"(alumina, assumed $\\rho$ = {ALUMINA_DENSITY:.0f} kg/m$^3$)\n"
             f"E' = {imp.E_eff / 1e9:.1f} GPa (sphere + flat), $\\varepsilon_y$ = {imp.eps_y:.4f}, "
             f"$\\nu$ = {imp.nu:g}, $V_c$ = {imp.V_c:.4f} m/s; Kharaz-Gorham data not shown")
-    ax.text(0.99, 0.985, info, transform=ax.transAxes, fontsize=6.5, ha="right", va="top",
+    ax.text(0.99, 0.015, info, transform=ax.transAxes, fontsize=6.5, ha="right", va="bottom",
             bbox=dict(boxstyle="round", fc="white", ec="0.7", alpha=0.9))
     ax.set_xlim(0.0, v_max)
-    ax.set_ylim(0.0, 1.2)
+    ax.set_ylim(0.0, 1.4)
     ax.set_xlabel(r"impact speed $V_1$ [m/s]")
     ax.set_ylabel(r"coefficient of restitution $e = V_2/V_1$ [-]")
     ax.set_title(f"Fig. {fig_no}: alumina sphere (R = {KHARAZ_RADIUS * 1e3:g} mm) on {flat_name} flat")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7.5, loc="lower left")
+    ax.legend(fontsize=7.5, loc="upper right")
     return fig, ax
 
 
@@ -321,7 +326,7 @@ def figure7(ax=None, v_max=5.0, n=400):
     """JGM Fig 7: e against V1 (m/s), alumina sphere on an aluminium flat (Table 3 inputs).
 
     This model with both unloadings (eqs 33, 35), Thornton (eq 2), Wu et al. (eqs 39-41) and
-    Weir-Tallon (eq 3). Mass and E' as in :func:`kharaz_impact`. Curves above e = 1.2 (Wu et al.
+    Weir-Tallon (eq 3). Mass and E' as in :func:`kharaz_impact`. Curves above e = 1.4 (Wu et al.
     and Weir-Tallon at low speed) run off the plot.
     """
     return _figure_kharaz(ax, "aluminium", 7, v_max, n)

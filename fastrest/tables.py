@@ -1,17 +1,19 @@
 """Multi-material tables: generation (Numba, both cores), HDF5 storage, loading and evaluation.
 
-A table holds, on a grid over eps_y and nu, everything the fast multi-material path needs:
+A table holds, on a grid over the material, everything the fast multi-material path needs:
 
 * ``W_star`` (eps_y, nu, omega_star): the normalised energy (W_ep)* = 1 - F(w*) of JGM eq (25),
   up to w* = 425 (by composite Gauss-Legendre quadrature, :mod:`fastrest.energy`);
-* ``omega_m_star``, ``e_jcg``, ``loss_jcg``, ``e_etsion``, ``loss_etsion`` (eps_y, nu, cell, node):
+* ``omega_m_star``, ``e_jcg``, ``loss_jcg``, ``e_etsion``, ``loss_etsion`` (c_eps_y, nu, cell, node):
   the direct solver's w_m*, e and 1 - e^2 at the Chebyshev points of bit-indexed cells in V1*
-  (:mod:`fastrest.interpolation`) from 1.9^1.25 up to the largest V1* any grid material allows.
+  (:mod:`fastrest.interpolation`) from 1.9^1.25 up to the largest V1* any grid material allows,
+  on a grid over s = C(nu) eps_y (mapped, see :func:`xi_range`) and nu.
 
-Evaluation at (V1*, eps_y, nu): the degree-5 polynomial of V1*'s cell at each of the 4 x 4 nearest
-material nodes, combined with cubic Lagrange weights in eps_y and nu (uniform grids). V1* <= 1.9^1.25
+Evaluation at (V1*, eps_y, nu): the degree-5 polynomial of V1*'s cell at each of the 6 x 6 nearest
+material nodes, combined with 6-point Lagrange weights in the mapped s and in nu. V1* <= 1.9^1.25
 uses the exact closed forms (no table). Nodes are computed past w* = 425 where a neighbour needs it
-(the same formulas, up to a/R = 1), but a query whose interpolated w_m* exceeds 425 is refused.
+(the same formulas as a smooth extension, even past a/R = 1), but a query whose interpolated w_m*
+exceeds 425 (by more than :data:`OMEGA_LIMIT_TOL`) is refused.
 """
 import hashlib
 import json
@@ -227,9 +229,9 @@ V1* every material of the table has w_m* <= 425.
 
 
 #: Interpolation stencils across materials (points per axis). The JG law varies with eps_y through
-#: cos(pi a/R), a/R ~ eps_y w^0.6, which at w* ~ 425 spans half a period over the validated range:
-#: a 6-point (quintic) stencil in eps_y reaches 1e-10 where a cubic needs ~4x the nodes
-#: (bench/table_resolution.py). nu acts only through C(nu): a cubic is enough.
+#: cos(pi a/R), a/R ~ C eps_y w^0.6, which at w* ~ 425 spans half a period over the validated
+#: range: 6-point (quintic) stencils reach ~1e-9 with 56 x 6 nodes where cubic ones stay near 1e-7
+#: (measured while choosing the grid; bench/ reports the error of several grids).
 STENCIL_EPS = 6
 STENCIL_NU = 6
 
@@ -272,6 +274,11 @@ def table_value(tab, q, v, eps_y, nu):
 
     NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425) or for invalid input.
     """
+    return _interpolate(tab, q, v, eps_y, nu, True)
+
+
+@nb.njit(cache=True, inline="always")
+def _interpolate(tab, q, v, eps_y, nu, check_limit):
     if not (eps_y >= tab.eps_lo and eps_y <= tab.eps_hi and nu >= tab.nu_lo and nu <= tab.nu_hi):
         return np.nan
     if not v > V_SWITCH:
@@ -287,13 +294,20 @@ def table_value(tab, q, v, eps_y, nu):
     xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
     i, we = _lagrange6(xi, tab.xi0, tab.inv_h_xi, tab.n_s)
     j, wn = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
-    if v > tab.v_safe and q != 0:
+    if check_limit and v > tab.v_safe and q != 0:
         if not _stencil_sum(tab.coef, 0, cell, i, j, u, we, wn) <= OMEGA_LIMIT:
             return np.nan
     r = _stencil_sum(tab.coef, q, cell, i, j, u, we, wn)
-    if q == 0 and not r <= OMEGA_LIMIT:
+    if check_limit and q == 0 and not r <= OMEGA_LIMIT:
         return np.nan
     return r
+
+
+@nb.njit(cache=True)
+def _interpolant_array(tab, q, v, eps_y, nu, out):
+    """The interpolant without the w_m* <= 425 check (for measuring its error at the limit)."""
+    for k in range(v.size):
+        out[k] = _interpolate(tab, q, v[k], eps_y[k], nu[k], False)
 
 
 @nb.njit(cache=True, inline="always")
@@ -436,7 +450,7 @@ class Table:
             ref[1 + 2 * m] = sol[1]
             ref[2 + 2 * m] = sol[2]
         for q in range(5):
-            _table_array(self.data, q, v, e, n, got[q])
+            _interpolant_array(self.data, q, v, e, n, got[q])
         errs = {}
         for q, name in enumerate(QUANTITIES):
             floor = 1e-3 if name == "loss_etsion" else 0.0
@@ -551,9 +565,25 @@ def read(path):
                    v1_star_max=ds["v1_star_max"], values=np.stack([ds[q] for q in QUANTITIES]))
         if cells["degree"] != DEGREE or not np.array_equal(td.axes["node"], CHEB_U):
             raise ValueError("cell polynomial degree or nodes differ from this fastrest's")
+        _check_axes_match_grid(gen)
     except (KeyError, TypeError, ValueError) as exc:
         raise _hdf5.TableFileError(f"{path}: not a fastrest restitution table ({exc})") from exc
     return Table(gen, attrs=a, path=str(path))
+
+
+def _check_axes_match_grid(gen):
+    """The checksum covers the arrays; this ties the grid attributes to them."""
+    g = gen["grid"]
+    nus = np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
+    s = s_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
+    eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y"])
+    base, edges = cell_edges(V_SWITCH, gen["v_top"], g["bits_per_octave"])
+    for name, want, got in (("nu", nus, gen["nu"]), ("c_eps_y", s, gen["c_eps_y"]),
+                            ("eps_y", eps_w, gen["eps_y"]), ("cell", edges, gen["edges"])):
+        if want.shape != got.shape or not np.allclose(want, got, rtol=1e-12, atol=0):
+            raise ValueError(f"axis {name!r} does not match the grid attributes")
+    if base != gen["base"]:
+        raise ValueError("cell keys do not match the grid attributes")
 
 
 _LOADED = {}
