@@ -15,7 +15,7 @@ from collections import namedtuple
 import numba as nb
 import numpy as np
 
-from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, check_velocity, warn_if_outside_validated
+from ._validation import OMEGA_M_STAR_MAX, as_float_array, check_eps_y, check_nu, check_velocity, warn_if_outside_validated
 from .direct import raise_out_of_range, v1_star_limit, w_upper
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
@@ -188,7 +188,7 @@ class Curve:
                 f"v_max={self.v_max!r}, cells={self.data.e_rows.shape[0]})")
 
     def _eval(self, what, v):
-        a = np.asarray(v, dtype=np.float64)
+        a = as_float_array(v, "v1_star")
         flat = np.ascontiguousarray(a).ravel()
         out = np.empty(flat.size)
         _curve_array(self.data, what, flat, out)
@@ -322,7 +322,7 @@ class Scene:
         return f"Scene({len(self.curves)} materials, unloading={self.curves[0].unloading!r})"
 
     def _eval(self, what, v1_star, material):
-        v = np.asarray(v1_star, dtype=np.float64)
+        v = as_float_array(v1_star, "v1_star")
         k = np.asarray(material)
         if not np.issubdtype(k.dtype, np.integer):
             raise ValueError(f"material must be integer indices into the scene's {len(self)} materials")
