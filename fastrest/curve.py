@@ -23,7 +23,7 @@ from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, chebyshev_nod
                             horner_row)
 from .unloading import ETSION, JCG, UNLOADING_MODELS, jcg_residual_ratio, restitution_kernel, unloading_code
 
-#: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-15 on w_m* (bench/curve_accuracy.py).
+#: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-14 on e and w_m* (bench/, section 1).
 BITS_PER_OCTAVE = 5
 
 CurveData = namedtuple("CurveData", ["model", "v_max", "shift", "base", "omega_rows", "e_rows", "loss_rows"])

@@ -51,8 +51,8 @@ OMEGA_LIMIT = OMEGA_M_STAR_MAX * (1.0 + OMEGA_LIMIT_TOL)
 OMEGA_GRID_HERTZ = 20  # nodes of the W* grid on [0, 1.9]
 OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
 
-#: Default grid of the shipped table (validated range of JGM; spacing chosen by measurement,
-#: bench/table_resolution.py).
+#: Default grid of the shipped table (validated range of JGM; spacing chosen by measuring the
+#: error of several grids, reported in bench/RESULTS.md).
 DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=56,
                     nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=6, bits_per_octave=3,
                     c_eps_y_map_rate=30.0)
@@ -154,14 +154,14 @@ def yield_parameter(eps_y, nu):
 
     The law depends on eps_y mostly through a/R, i.e. through s: on a grid uniform in (s, nu) the
     remaining dependence on nu is very smooth, where on an (eps_y, nu) grid both axes carry the
-    fast variation of cos(pi a/R) at large w* (bench/table_resolution.py).
+    fast variation of cos(pi a/R) at large w* (bench/RESULTS.md compares grids).
     """
     return 1.295 * np.exp(0.736 * np.asarray(nu)) * eps_y
 
 
 def xi_range(g):
     """The s axis is uniform in xi = expm1(k s)/k (k = c_eps_y_map_rate; xi = s for k = 0), denser
-    where s, and with it a/R, is large and the law varies fastest (bench/table_resolution.py)."""
+    where s, and with it a/R, is large and the law varies fastest (bench/RESULTS.md compares grids)."""
     k = g["c_eps_y_map_rate"]
     lo = yield_parameter(g["eps_y_min"], g["nu_min"])
     hi = yield_parameter(g["eps_y_max"], g["nu_max"])

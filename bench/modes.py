@@ -1,0 +1,232 @@
+"""Part 2: the ways fastrest is used, each timed against the closed-form fit in the same run."""
+import tempfile
+import timeit
+import warnings
+from pathlib import Path
+
+import numba
+import numpy as np
+
+import fastrest
+from fastrest import models, tables
+from fastrest.curve import BITS_PER_OCTAVE, Curve, CurveData, build_curve_data
+from fastrest.direct import v1_star_limit
+from fastrest.energy import V_SWITCH
+from fastrest.interpolation import MANTISSA_BITS, cell_edges, chebyshev_nodes, fit_cells
+from fastrest.tables import _table_array
+from fastrest.unloading import JCG
+
+from . import kernels
+from .points import CENTRE, SEED, point_set, reference, worst
+from .timing import interleaved, repeated, with_threads
+
+EPS, NU = CENTRE
+
+
+def _speeds(n, vmax, seed=SEED):
+    return np.exp(np.random.default_rng(seed + n % 1000003).uniform(0.0, 1.0, n) * np.log(vmax))
+
+
+def batch_sizes(cfg, c, log):
+    """Curve.e over n points (ns per point) against the fit kernel on the same points."""
+    out = {}
+    eps1 = np.array([EPS])
+    for n in cfg["batch_sizes"]:
+        v = _speeds(n, c.v_max)
+        o = np.empty(n)
+        dst = np.empty(n)
+        cases = {
+            "Curve.e": ((lambda: c.e(v)), n),
+            "curve_loop": ((lambda: kernels.curve_loop(c.data, v, o)), n),
+            "fit": ((lambda: models.jgm_fit_jcg_kernel(v, eps1, o)), n),
+            "copy": ((lambda: np.copyto(dst, v)), n),
+        }
+        rounds = cfg["rounds"] if n <= 10**6 else max(5, cfg["rounds"] // 2)
+        log(f"  batch n = {n:.0e} ...")
+        tm = interleaved(cases, rounds, ref="fit", seed=n % 97)
+        out[int(n)] = {k: t.as_dict() for k, t in tm.items()}
+    return out
+
+
+def threads(cfg, c, log):
+    """A prange loop calling fastrest.jit.e_curve with 1 and 2 threads."""
+    out = {}
+    n_max = numba.config.NUMBA_NUM_THREADS
+    eps1 = np.array([EPS])
+    try:
+        for n in cfg["thread_sizes"]:
+            v = _speeds(n, c.v_max)
+            o = np.empty(n)
+
+            def par(k):
+                def f():
+                    numba.set_num_threads(k)
+                    kernels.curve_prange(c.data, v, o)
+                return f
+
+            cases = {"fit": ((lambda: models.jgm_fit_jcg_kernel(v, eps1, o)), n),
+                     "serial loop": ((lambda: kernels.curve_loop(c.data, v, o)), n)}
+            for k in sorted({1, min(2, n_max)}):
+                cases[f"prange, {k} thread" + ("s" if k > 1 else "")] = (par(k), n)
+            log(f"  threads n = {n:.0e} ...")
+            tm = interleaved(cases, cfg["rounds"], ref="fit", seed=3)
+            out[int(n)] = {k: t.as_dict() for k, t in tm.items()}
+    finally:
+        numba.set_num_threads(n_max)
+    return {"max_threads": n_max, "sizes": out}
+
+
+def scalar(cfg, c, log):
+    """Scalar calls from Python (timeit loops, interleaved rounds)."""
+    import fastrest.direct  # noqa: F401
+    g = {"c": c, "fastrest": fastrest, "models": models, "fit": models.jgm_fit_jcg_scalar}
+    stmts = {
+        "Curve.e(5.0)": "c.e(5.0)",
+        "Curve.loss(5.0)": "c.loss(5.0)",
+        "Curve.omega_m(5.0)": "c.omega_m(5.0)",
+        "Curve.e(500.0)": "c.e(500.0)",
+        "fastrest.e_star(5.0, 0.005, 0.33)": "fastrest.e_star(5.0, 0.005, 0.33)",
+        "fastrest.direct.e_star(5.0, 0.005, 0.33)": "fastrest.direct.e_star(5.0, 0.005, 0.33)",
+        "fit jgm_fit_jcg_scalar(5.0, 0.005) (Numba dispatcher)": "fit(5.0, 0.005)",
+        "fit models.jgm_fit_jcg(5.0, 0.005) (NumPy)": "models.jgm_fit_jcg(5.0, 0.005)",
+    }
+    ref = "fit jgm_fit_jcg_scalar(5.0, 0.005) (Numba dispatcher)"
+    cases = {}
+    for name, stmt in stmts.items():
+        t = timeit.Timer(stmt, globals=g)
+        t.timeit(10)  # warm-up
+        number = max(10, int(cfg["scalar_block"] / max(t.timeit(100) / 100, 1e-9)))
+        cases[name] = ((lambda t=t, number=number: t.timeit(number)), number)
+    log("  scalar calls ...")
+    tm = interleaved(cases, cfg["rounds"], ref=ref, min_block=0.0, seed=5)
+    return {k: t.as_dict() for k, t in tm.items()}
+
+
+def in_njit(cfg, c, log):
+    """Calls from inside a user's @njit loop: throughput (independent) and latency (dependent chain)."""
+    n = cfg["njit_n"]
+    v = _speeds(n, c.v_max, SEED + 11)
+    o = np.empty(n)
+    cases = {
+        "e_curve throughput": ((lambda: kernels.curve_loop(c.data, v, o)), n),
+        "e_curve latency": ((lambda: kernels.curve_chain(c.data, v)), n),
+        "fit throughput": ((lambda: kernels.fit_loop(v, EPS, o)), n),
+        "fit latency": ((lambda: kernels.fit_chain(v, EPS)), n),
+    }
+    if not np.isfinite(kernels.curve_chain(c.data, v)):
+        raise RuntimeError("latency chain left the curve's domain")
+    log("  inside @njit ...")
+    tm = interleaved(cases, cfg["rounds"], ref="fit throughput", seed=7)
+    res = {k: t.as_dict() for k, t in tm.items()}
+    for k in ("e_curve latency", "fit latency"):
+        res[k]["ratio_to_ref"] = float(np.median(tm[k].per_eval / tm["fit latency"].per_eval))
+        res[k]["ratio_of_minima"] = tm[k].min / tm["fit latency"].min
+    res["_n"] = n
+    return res
+
+
+def multi_material(cfg, log):
+    """Points with their own materials: fastrest.e_star and the jit e_table loop."""
+    K = cfg["n_materials"]
+    ps = point_set(K, cfg["mm_n"] // K, seed=SEED + 3)
+    v, e, nu = ps.shuffled(SEED + 4)
+    tab = fastrest.load_table()
+    o = np.empty(v.size)
+    _table_array(tab.data, 1, v, e, nu, o)
+    keep = np.isfinite(o)
+    v, e, nu = (np.ascontiguousarray(a[keep]) for a in (v, e, nu))
+    n = v.size
+    o = np.empty(n)
+    cases = {
+        "fastrest.e_star": ((lambda: fastrest.e_star(v, e, nu)), n),
+        "fastrest.e_star, 1 Numba thread": (with_threads(1, lambda: fastrest.e_star(v, e, nu)), n),
+        "e_table loop (jit) throughput": ((lambda: kernels.table_loop(tab.data, v, e, nu, o)), n),
+        "e_table chain (jit) latency": ((lambda: kernels.table_chain(tab.data, v, e, nu)), n),
+        "fit kernel (per-point eps_y)": ((lambda: models.jgm_fit_jcg_kernel(v, e, o)), n),
+        "fit latency (jit chain)": ((lambda: kernels.fit_chain_mm(v, e)), n),
+    }
+    if not np.isfinite(kernels.table_chain(tab.data, v, e, nu)):
+        raise RuntimeError("latency chain left the table's domain")
+    log(f"  multi-material n = {n:.0e} ...")
+    tm = interleaved(cases, cfg["rounds"], ref="fit kernel (per-point eps_y)", seed=9)
+    res = {k: t.as_dict() for k, t in tm.items()}
+    for k in ("e_table chain (jit) latency", "fit latency (jit chain)"):
+        res[k]["ratio_to_ref"] = float(np.median(tm[k].per_eval / tm["fit latency (jit chain)"].per_eval))
+    res["_n"] = n
+    res["_dropped"] = int((~keep).sum())
+    res["_parallel_min_points"] = getattr(tables, "PARALLEL_MIN_POINTS", None)
+    return res
+
+
+def curve_from_table(tab, eps_y, nu, bits=BITS_PER_OCTAVE):
+    """The Curve of one material built from a multi-material table instead of the direct solver:
+    the table evaluated at the curve's Chebyshev nodes, then the same per-cell fit."""
+    vmax = v1_star_limit(eps_y, nu)
+    base, edges = cell_edges(V_SWITCH, vmax, bits)
+    nodes = chebyshev_nodes(edges)
+    flat = nodes.ravel()
+    e_ = np.full(flat.size, eps_y)
+    n_ = np.full(flat.size, nu)
+    rows = []
+    for q in (0, 1, 2):
+        out = np.empty(flat.size)
+        _table_array(tab.data, q, flat, e_, n_, out)
+        if not np.isfinite(out).all():
+            raise RuntimeError("table refused a curve node")
+        rows.append(np.ascontiguousarray(fit_cells(edges, out.reshape(nodes.shape))))
+    data = CurveData(JCG, float(vmax), MANTISSA_BITS - bits, int(base), *rows)
+    return Curve(eps_y, nu, "jcg", data)
+
+
+def build_times(cfg, log):
+    """Default table generation/build, and one curve: from the direct solver vs from the table."""
+    res = {}
+    log("  default table: generate(None) ...")
+    res["generate_default_s"] = repeated(lambda: tables.generate(None, progress=False),
+                                         cfg["build_repeats"]).tolist()
+    with tempfile.TemporaryDirectory() as d:
+        log("  default table: build (generate + error measurement + HDF5 write) ...")
+        res["build_default_s"] = repeated(lambda: tables.build(Path(d) / "t.h5", None, progress=False),
+                                          1).tolist()
+        res["file_mbytes"] = (Path(d) / "t.h5").stat().st_size / 2**20
+    tab = fastrest.load_table()
+    ps = point_set(1, cfg["curve_err_n"], seed=SEED + 5, hard=True)  # material 0 = CENTRE
+    ref = reference(ps)
+    variants = {
+        "curve(0.005, 0.33) (direct solver, 2^5 cells/octave)": lambda: fastrest.curve(EPS, NU),
+        "curve from the default table (same nodes)": lambda: curve_from_table(tab, EPS, NU),
+        "curve(0.005, 0.33, v_max=200)": lambda: fastrest.curve(EPS, NU, v_max=200.0),
+        "direct solver, 2^3 cells/octave": lambda: Curve(EPS, NU, "jcg", build_curve_data(EPS, NU, "jcg", bits_per_octave=3)),
+    }
+    errs = {}
+    for name, f in variants.items():
+        cv = f()
+        m = ps.v <= cv.v_max
+        errs[name] = {q: worst(getattr(cv, meth)(ps.v[m]), ref[q][m])[0]
+                      for q, meth in (("e_jcg", "e"), ("omega_m", "omega_m"), ("loss_jcg", "loss"))}
+        errs[name]["cells"] = int(cv.data.e_rows.shape[0])
+        errs[name]["v_max"] = float(cv.v_max)
+    log("  one curve ...")
+    cases = {k: (f, 1) for k, f in variants.items()}
+    v = _speeds(10**5, v1_star_limit(EPS, NU))
+    o = np.empty(v.size)
+    cases["fit kernel, 1e5 points"] = ((lambda: models.jgm_fit_jcg_kernel(v, np.array([EPS]), o)), v.size)
+    tm = interleaved(cases, cfg["curve_repeats"], min_block=0.0, seed=11)
+    res["curve"] = {k: {**tm[k].as_dict(), **errs[k]} for k in variants}
+    res["fit_per_eval_s"] = tm["fit kernel, 1e5 points"].median
+    return res
+
+
+def run(cfg, log=print):
+    c = fastrest.curve(EPS, NU)
+    c.e(5.0), c.e(np.array([5.0]))
+    out = {}
+    out["batch"] = batch_sizes(cfg, c, log)
+    out["threads"] = threads(cfg, c, log)
+    out["scalar"] = scalar(cfg, c, log)
+    out["njit"] = in_njit(cfg, c, log)
+    out["multi"] = multi_material(cfg, log)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", fastrest.ValidityWarning)
+        out["build"] = build_times(cfg, log)
+    return out
