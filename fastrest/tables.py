@@ -53,7 +53,7 @@ OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
 
 #: Default grid of the shipped table (validated range of JGM; spacing chosen by measuring the
 #: error of several grids, reported in bench/RESULTS.md).
-DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=56,
+DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=64,
                     nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=6, bits_per_octave=3,
                     c_eps_y_map_rate=30.0)
 
@@ -230,7 +230,7 @@ V1* every material of the table has w_m* <= 425.
 
 #: Interpolation stencils across materials (points per axis). The JG law varies with eps_y through
 #: cos(pi a/R), a/R ~ C eps_y w^0.6, which at w* ~ 425 spans half a period over the validated
-#: range: 6-point (quintic) stencils reach ~1e-9 with 56 x 6 nodes where cubic ones stay near 1e-7
+#: range: 6-point (quintic) stencils reach ~1e-9 with 64 x 6 nodes where cubic ones stay near 1e-7
 #: (measured while choosing the grid; bench/ reports the error of several grids).
 STENCIL_EPS = 6
 STENCIL_NU = 6
