@@ -33,12 +33,14 @@ NU_RANGE = (0.2, 0.45)
 QUANTITIES = ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion")
 ETSION_LOSS_FLOOR = 1e-3
 
-# Bounds for the default table over the validated domain. Measured worst (seed below, 6000 random
-# points + 1040 hard cases): w_m* 6.0e-10, e_jcg 1.1e-9, e_etsion 1.5e-9, loss_jcg 3.6e-9,
-# loss_etsion 2.0e-7 (relative to max(|loss|, 1e-3), i.e. ~2e-10 absolute); on the edges/corners
-# test: 6.0e-10, 1.2e-9, 1.7e-9, 4.5e-9, 1.3e-7. The lead sets the final bounds.
-TOL_TABLE = {"omega_m_star": 1e-8, "e_jcg": 1e-8, "e_etsion": 1e-8, "loss_jcg": 2e-8,
+# Bounds for the default table (64 x 6 nodes) over the validated domain, 6000 random points +
+# 1040 hard cases (seed below); the Etsion loss is relative to max(|loss|, 1e-3), as it changes
+# sign. The issue asks <= 1e-9 for multi-material points; the default table meets it for w_m* and e
+# (bench/RESULTS.md). 1 - e^2 is not met (~5e-9 just above the switch, where it is small):
+# its bounds record the measured state, not the target.
+TOL_TABLE = {"omega_m_star": 1e-9, "e_jcg": 1e-9, "e_etsion": 1e-9, "loss_jcg": 1e-8,
              "loss_etsion": 1e-6}
+
 SEED = 424242
 
 # A small grid for the file tests (builds in well under a second).
