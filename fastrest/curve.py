@@ -20,7 +20,7 @@ from .direct import raise_out_of_range, v1_star_limit, w_upper
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, chebyshev_nodes, fit_cells,
-                            horner_row)
+                            cell_polynomial)
 from .unloading import ETSION, JCG, UNLOADING_MODELS, jcg_residual_ratio, restitution_kernel, unloading_code
 
 #: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-14 on e and w_m* (bench/, section 1).
@@ -57,7 +57,7 @@ def cells_or_closed_form(rows, v_max, shift, base, model, what, v):
     below; NaN for v < 0, NaN or v > v_max. The one evaluation rule of curves and scenes."""
     if v > V_SWITCH:
         if v <= v_max:
-            return horner_row(rows, cell_index(v, shift, base), v)
+            return cell_polynomial(rows, cell_index(v, shift, base), v)
         return np.nan
     if v >= 0.0 and v <= v_max:
         return closed_form(v, model)[what]

@@ -52,8 +52,8 @@ import numpy as np
 from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, warn_if_outside_validated
 from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, p_star_jg
 from .energy import F_SWITCH, jg_integral
-from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, chebyshev_nodes, fit_cells,
-                            horner_row)
+from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
+                            chebyshev_nodes, fit_cells, row_polynomial)
 from .unloading import ETSION, JCG, jcg_residual_ratio, unloading_code
 
 __all__ = ["ForwardData", "forward_data", "forward_limit", "F_forward", "P_forward",
@@ -91,7 +91,7 @@ def F_forward(data, w):
     """Loading energy to interference w over U_c, F(w) = 1 - (W_ep)*(w) (-); NaN outside [0, w_max]."""
     if w > W_SWITCH:
         if w <= data.w_max:
-            return horner_row(data.f_rows, cell_index(w, data.shift, data.base), w)
+            return cell_polynomial(data.f_rows, cell_index(w, data.shift, data.base), w)
         return np.nan
     if w >= 0.0 and w <= data.w_max:
         return w * (w * math.sqrt(w))  # = w * P*, as forward_values
@@ -122,7 +122,7 @@ def P_table_forward(data, w):
     """
     if w > W_SWITCH:
         if w <= data.w_max:
-            return horner_row(data.p_rows, cell_index(w, data.shift, data.base), w)
+            return cell_polynomial(data.p_rows, cell_index(w, data.shift, data.base), w)
         return np.nan
     if w >= 0.0 and w <= data.w_max:
         return w * math.sqrt(w)
@@ -141,10 +141,8 @@ def FP_table_forward(data, w):
             i = cell_index(w, data.shift, data.base)
             rf = data.f_rows
             rp = data.p_rows
-            u = (w - rf[i, 0]) * rf[i, 1]
-            f = rf[i, 2] + u * (rf[i, 3] + u * (rf[i, 4] + u * (rf[i, 5] + u * (rf[i, 6] + u * rf[i, 7]))))
-            p = rp[i, 2] + u * (rp[i, 3] + u * (rp[i, 4] + u * (rp[i, 5] + u * (rp[i, 6] + u * rp[i, 7]))))
-            return f, p
+            u = (w - rf[i, 0]) * rf[i, 1]  # F and P* share the cells
+            return row_polynomial(rf, i, u), row_polynomial(rp, i, u)
         return np.nan, np.nan
     if w >= 0.0 and w <= data.w_max:
         p = w * math.sqrt(w)
@@ -168,7 +166,7 @@ def forward_values(data, w):
             return f, p, f, 0.0  # elastic, or Etsion unloading after Hertz loading (e = 1)
         r = jcg_residual_ratio(w - 1.0)
         return f, p, f - f * r, f * r  # P* w = w^2.5 = F exactly under Hertz loading
-    f = horner_row(data.f_rows, cell_index(w, data.shift, data.base), w)
+    f = cell_polynomial(data.f_rows, cell_index(w, data.shift, data.base), w)
     p = _p_jg(data, w)
     if data.model == JCG:
         r = jcg_residual_ratio(w - 1.0)

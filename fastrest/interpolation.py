@@ -94,7 +94,17 @@ def cell_index(v, shift, base):
 
 
 @nb.njit(cache=True, inline="always")
-def horner_row(rows, i, v):
+def row_polynomial(rows, i, u):
+    """Row i's polynomial at the local coordinate u in [-1, 1].
+
+    Estrin's scheme: three dependent levels instead of Horner's five (lower latency).
+    """
+    u2 = u * u
+    return ((rows[i, 2] + u * rows[i, 3]) + u2 * (rows[i, 4] + u * rows[i, 5])
+            + (u2 * u2) * (rows[i, 6] + u * rows[i, 7]))
+
+
+@nb.njit(cache=True, inline="always")
+def cell_polynomial(rows, i, v):
     """Evaluate row i's polynomial at v."""
-    u = (v - rows[i, 0]) * rows[i, 1]
-    return rows[i, 2] + u * (rows[i, 3] + u * (rows[i, 4] + u * (rows[i, 5] + u * (rows[i, 6] + u * rows[i, 7]))))
+    return row_polynomial(rows, i, (v - rows[i, 0]) * rows[i, 1])

@@ -39,7 +39,7 @@ from . import forward as fw
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning,
                           check_finite_positive, warn_if_outside_validated)
 from .contact import W_SWITCH, omega_star_limit_kernel
-from .interpolation import chebyshev_nodes, fit_cells, horner_row
+from .interpolation import chebyshev_nodes, fit_cells, cell_polynomial
 from .materials import Impact, Material
 from .unloading import unloading_code
 
@@ -226,7 +226,7 @@ def _pdf(g, s):
     i = int((s - g.s_lo) * g.inv_h)
     if i >= g.pdf_rows.shape[0]:
         i = g.pdf_rows.shape[0] - 1
-    return horner_row(g.pdf_rows, i, s)
+    return cell_polynomial(g.pdf_rows, i, s)
 
 
 @nb.njit(cache=True)

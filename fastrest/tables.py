@@ -312,7 +312,7 @@ def _interpolant_array(tab, q, v, eps_y, nu, out):
 
 @nb.njit(cache=True, inline="always")
 def _stencil_sum(coef, q, cell, i, j, u, we, wn):
-    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one Horner."""
+    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one polynomial (Estrin)."""
     c0 = c1 = c2 = c3 = c4 = c5 = 0.0
     for a in range(STENCIL_EPS):
         for b in range(STENCIL_NU):
@@ -324,7 +324,8 @@ def _stencil_sum(coef, q, cell, i, j, u, we, wn):
             c3 += w * c[3]
             c4 += w * c[4]
             c5 += w * c[5]
-    return c0 + u * (c1 + u * (c2 + u * (c3 + u * (c4 + u * c5))))
+    u2 = u * u
+    return (c0 + u * c1) + u2 * (c2 + u * c3) + (u2 * u2) * (c4 + u * c5)
 
 
 @nb.njit(cache=True)
