@@ -144,7 +144,8 @@ def check_omega(w, eps_y, nu, name="w"):
             "(eq 12 needs 0 < a/R < 1)")
 
 
-def _law(kernel, w, eps_y, nu):
+def evaluate_law(kernel, w, eps_y, nu):
+    """Validate (w, eps_y, nu), broadcast them, and fill the output with ``kernel``."""
     (w, eps_y, nu), shape = broadcast_inputs((w, "w"), (eps_y, "eps_y"), (nu, "nu"))
     check_eps_y(eps_y)
     check_nu(nu)
@@ -171,12 +172,12 @@ def P_star(w, eps_y, nu):
     float or ndarray
         P* (-), broadcast over the inputs.
     """
-    return _law(_p_star_array, w, eps_y, nu)
+    return evaluate_law(_p_star_array, w, eps_y, nu)
 
 
 def A_star(w, eps_y, nu):
     """Normalised contact area A* = A/A_c of the JG law, JGM eqs (8), (15). Parameters as :func:`P_star`."""
-    return _law(_a_star_array, w, eps_y, nu)
+    return evaluate_law(_a_star_array, w, eps_y, nu)
 
 
 def omega_star_limit(eps_y, nu):

@@ -743,13 +743,21 @@ class RoughSurface:
         if np.any(hz[0] != _OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         x0 = hz[1].copy()
+        # JG summits sink deeper than Hertz ones: start with twice the estimate
+        return self._solve_growing_table(
+            lambda data, w_cap, at_limit, out: _explicit_impacts(data, h, energy, x0, False, w_cap,
+                                                                 at_limit, out),
+            9, 2.0 * float(x0.max()), energy, unloading, extrapolate, M)
+
+    def _solve_growing_table(self, run, rows, w_guess, energy, unloading, extrapolate, M):
+        """Run a JG solve, growing the forward table until no impact needs more of it."""
         lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
         data = self._tables.get(unloading_code(unloading))
-        if data is None:  # JG summits sink deeper than Hertz ones: start with twice the estimate
-            data = self.forward(unloading, min(2.0 * float(x0.max()), lim), extrapolate)
+        if data is None:
+            data = self.forward(unloading, min(w_guess, lim), extrapolate)
         while True:
-            out = np.zeros((9, n))
-            _explicit_impacts(data, h, energy, x0, False, min(data.w_max, lim), data.w_max >= lim, out)
+            out = np.zeros((rows, energy.size))
+            run(data, min(data.w_max, lim), data.w_max >= lim, out)
             need = out[0] == _NEEDS_TABLE
             if not np.any(need):
                 break
@@ -771,22 +779,9 @@ class RoughSurface:
         if np.any(hz[0] != _OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         s0 = hz[1].copy()
-        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
-        data = self._tables.get(unloading_code(unloading))
-        if data is None:
-            data = self.forward(unloading, min(1.5 * float(hz[2].max()), lim), extrapolate)
-        while True:
-            out = np.zeros((10, n))
-            run(data, g, energy, s0, False, min(data.w_max, lim), data.w_max >= lim, out)
-            need = out[0] == _NEEDS_TABLE
-            if not np.any(need):
-                break
-            k = int(np.flatnonzero(need)[0])
-            data = self._grow_or_raise(unloading, float(out[2, need].max()), extrapolate,
-                                       float(np.sqrt(2.0 * self.U_c * energy[k] / M)))
-        if np.any(out[0] != _OK):
-            raise RuntimeError("rough-surface solver did not converge (please report)")
-        return out
+        return self._solve_growing_table(
+            lambda data, w_cap, at_limit, out: run(data, g, energy, s0, False, w_cap, at_limit, out),
+            10, 1.5 * float(hz[2].max()), energy, unloading, extrapolate, M)
 
     def _assemble(self, v, M, energy, raw, code):
         if self.kind == "explicit":
