@@ -9,12 +9,9 @@ import numpy as np
 
 import fastrest
 from fastrest import models, tables
-from fastrest.curve import BITS_PER_OCTAVE, Curve, CurveData, build_curve_data
+from fastrest.curve import BITS_PER_OCTAVE, Curve, build_curve_data
 from fastrest.direct import v1_star_limit
-from fastrest.energy import V_SWITCH
-from fastrest.interpolation import MANTISSA_BITS, cell_edges, chebyshev_nodes, fit_cells
 from fastrest.tables import _table_array
-from fastrest.unloading import JCG
 
 from . import kernels
 from .points import CENTRE, SEED, point_set, reference, worst
@@ -161,21 +158,18 @@ def multi_material(cfg, log):
 def curve_from_table(tab, eps_y, nu, bits=BITS_PER_OCTAVE):
     """The Curve of one material built from a multi-material table instead of the direct solver:
     the table evaluated at the curve's Chebyshev nodes, then the same per-cell fit."""
-    vmax = v1_star_limit(eps_y, nu)
-    base, edges = cell_edges(V_SWITCH, vmax, bits)
-    nodes = chebyshev_nodes(edges)
-    flat = nodes.ravel()
-    e_ = np.full(flat.size, eps_y)
-    n_ = np.full(flat.size, nu)
-    rows = []
-    for q in (0, 1, 2):
-        out = np.empty(flat.size)
-        _table_array(tab.data, q, flat, e_, n_, out)
+    def from_table(v):
+        e_ = np.full(v.size, eps_y)
+        n_ = np.full(v.size, nu)
+        out = np.empty((3, v.size))
+        for q in (0, 1, 2):
+            _table_array(tab.data, q, v, e_, n_, out[q])
         if not np.isfinite(out).all():
             raise RuntimeError("table refused a curve node")
-        rows.append(np.ascontiguousarray(fit_cells(edges, out.reshape(nodes.shape))))
-    data = CurveData(JCG, float(vmax), MANTISSA_BITS - bits, int(base), *rows)
-    return Curve(eps_y, nu, "jcg", data)
+        return out
+
+    return Curve(eps_y, nu, "jcg", build_curve_data(eps_y, nu, "jcg", bits_per_octave=bits,
+                                                     jg_values=from_table))
 
 
 def build_times(cfg, log):

@@ -1,10 +1,17 @@
 """Scene curves: the model for one material, tabulated once, evaluated in nanoseconds.
 
 :func:`curve` builds a :class:`Curve` for one (eps_y, nu, unloading model) up to the largest
-speed a scene needs. Closed forms are used where they exist (V1* <= 1: elastic; V1* <= 1.9^1.25:
-Hertz loading, w_m* = V1*^0.8, JGM eqs 19, 35); above, w_m*, e and 1 - e^2 are degree-5 polynomials
-on cells indexed by the float's bits (:mod:`fastrest.interpolation`), fitted to the direct solver
-(:mod:`fastrest.direct`) at each cell's Chebyshev points.
+speed a scene needs. w_m*, e and 1 - e^2 are degree-5 polynomials on cells indexed by the float's
+bits (:mod:`fastrest.interpolation`) over 1 < V1* <= v_max, fitted at each cell's Chebyshev points
+to the direct solver (:mod:`fastrest.direct`) above V1* = 1.9^1.25 and to the exact closed forms
+below it (Hertz loading, w_m* = V1*^0.8, JGM eqs 19, 33, 35). A cell boundary sits exactly at
+1.9^1.25, so no polynomial straddles the kink. For V1* <= 1 (elastic) the values are exact: e = 1,
+1 - e^2 = 0, w_m* = V1*^0.8.
+
+Why polynomials for a closed form: the Hertz-range formula for e costs five libm calls (~45 ns
+here), the cells ~3 ns; with 2^5 cells per octave they reproduce the exact closed form to a few
+ulp (measured in tests/test_curve.py and bench/), i.e. they are an implementation of that closed
+form in the way libm implements exp, not an approximation of the model.
 
 The curve's data is a :class:`CurveData` namedtuple of scalars and arrays: pass it to the
 ``@njit`` functions of :mod:`fastrest.jit` from your own Numba code.
@@ -19,9 +26,8 @@ from ._validation import OMEGA_M_STAR_MAX, as_float_array, check_eps_y, check_nu
 from .direct import raise_out_of_range, v1_star_limit, w_upper
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
-from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, chebyshev_nodes, fit_cells,
-                            cell_polynomial)
-from .unloading import ETSION, JCG, UNLOADING_MODELS, jcg_residual_ratio, restitution_kernel, unloading_code
+from .interpolation import MANTISSA_BITS, cell_edges, cell_index, cell_polynomial, chebyshev_nodes, fit_cells
+from .unloading import ETSION, jcg_residual_ratio, restitution_kernel, unloading_code
 
 #: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-14 on e and w_m* (bench/, section 1).
 BITS_PER_OCTAVE = 5
@@ -29,12 +35,15 @@ BITS_PER_OCTAVE = 5
 CurveData = namedtuple("CurveData", ["model", "v_max", "shift", "base", "omega_rows", "e_rows", "loss_rows"])
 CurveData.__doc__ = """Numba-friendly data of one :class:`Curve`.
 
-model: 0 = JCG (eq 35), 1 = Etsion (eq 33); v_max: largest V1* tabulated; shift, base: cell index
-parameters; *_rows: (ncell, 8) float64 arrays of [center, 1/half_width, c0..c5] for w_m*, e, 1 - e^2.
+model: 0 = JCG (eq 35), 1 = Etsion (eq 33); v_max: largest V1* tabulated; shift, base: index
+parameters of the JG cells (row = (bits of V1*) >> shift) - base); *_rows: (ncell, 8) float64
+arrays of [center, 1/half_width, c0..c5] for w_m*, e, 1 - e^2: first the N_HERTZ rows of the
+Hertz-range closed forms (1 < V1* <= 1.9^1.25; for 1 - e^2 they hold (1 - e^2)/(V1* - 1)), then
+the JG cells from 1.9^1.25 to v_max.
 """
 
 
-# --- closed forms below the tabulated range -------------------------------------------------
+# --- closed forms below the JG range ----------------------------------------------------------
 
 @nb.njit(cache=True)
 def closed_form(v, model):
@@ -49,37 +58,85 @@ def closed_form(v, model):
     return w, math.sqrt(1.0 - r), r
 
 
+@nb.njit(cache=True)
+def hertz_node_values(v, model):
+    """(w_m*, e, (1 - e^2)/(V1* - 1)) at 1 < v <= 1.9^1.25: what the Hertz-range cells fit.
+
+    The loss is fitted divided by V1* - 1 (exact in floating point for 1 < V1* <= 2) and multiplied
+    back on evaluation, so 1 - e^2 keeps its relative accuracy as V1* -> 1.
+    """
+    out = np.empty((3, v.size))
+    for i in range(v.size):
+        w, e, loss = closed_form(v[i], model)
+        out[0, i] = w
+        out[1, i] = e
+        out[2, i] = loss / (v[i] - 1.0)
+    return out
+
+
+#: Cells per octave of the Hertz-range cells (2^6): the closed forms to ~1e-16 (measured in
+#: tests/test_curve.py; 2^5 leaves ~5e-15 on w_m* = V1*^0.8 near V1* = 2).
+HERTZ_BITS_PER_OCTAVE = 6
+HERTZ_SHIFT = MANTISSA_BITS - HERTZ_BITS_PER_OCTAVE
+
+
+def _hertz_layout():
+    base, edges = cell_edges(1.0, V_SWITCH, HERTZ_BITS_PER_OCTAVE)
+    return int(base), edges
+
+
+HERTZ_BASE, HERTZ_EDGES = _hertz_layout()
+#: Rows of the Hertz-range cells, which come first in every curve's row arrays.
+N_HERTZ = HERTZ_EDGES.shape[0]
+
+
+def hertz_rows(model):
+    """Cell rows (w_m*, e, (1 - e^2)/(V1* - 1)) of the closed forms over 1 < V1* <= 1.9^1.25."""
+    nodes = chebyshev_nodes(HERTZ_EDGES)
+    vals = hertz_node_values(nodes.ravel(), model).reshape((3,) + nodes.shape)
+    return fit_cells(HERTZ_EDGES, vals)
+
+
 # --- scalar kernels on CurveData (the public njit API re-exports these) ----------------------
 
 @nb.njit(cache=True, inline="always")
-def cells_or_closed_form(rows, v_max, shift, base, model, what, v):
-    """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) at V1* = v: cells above 1.9^1.25, closed form
-    below; NaN for v < 0, NaN or v > v_max. The one evaluation rule of curves and scenes."""
-    if v > V_SWITCH:
+def curve_value(rows, v_max, shift, base, what, v):
+    """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) at V1* = v from one curve's cells.
+
+    1 < V1* <= v_max: the polynomial of V1*'s cell: the Hertz closed forms up to 1.9^1.25 (rows
+    0..N_HERTZ-1, 2^6 cells per octave), the JG model above (row key(V1*) - base). 0 <= V1* <= 1:
+    elastic, exact. NaN for V1* < 0, NaN or V1* > v_max. The one evaluation rule of curves and scenes.
+    """
+    if v > 1.0:
         if v <= v_max:
+            if v <= V_SWITCH:
+                r = cell_polynomial(rows, cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
+                return r * (v - 1.0) if what == 2 else r
             return cell_polynomial(rows, cell_index(v, shift, base), v)
         return np.nan
     if v >= 0.0 and v <= v_max:
-        return closed_form(v, model)[what]
+        if what == 0:
+            return v**0.8
+        return 1.0 if what == 1 else 0.0
     return np.nan
 
 
 @nb.njit(cache=True)
 def omega_m_curve(data, v):
     """w_m*(V1*) from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
-    return cells_or_closed_form(data.omega_rows, data.v_max, data.shift, data.base, data.model, 0, v)
+    return curve_value(data.omega_rows, data.v_max, data.shift, data.base, 0, v)
 
 
 @nb.njit(cache=True)
 def e_curve(data, v):
     """e(V1*) from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
-    return cells_or_closed_form(data.e_rows, data.v_max, data.shift, data.base, data.model, 1, v)
+    return curve_value(data.e_rows, data.v_max, data.shift, data.base, 1, v)
 
 
 @nb.njit(cache=True)
 def loss_curve(data, v):
     """1 - e^2 at V1* from a curve; NaN for V1* < 0, NaN, or > data.v_max."""
-    return cells_or_closed_form(data.loss_rows, data.v_max, data.shift, data.base, data.model, 2, v)
+    return curve_value(data.loss_rows, data.v_max, data.shift, data.base, 2, v)
 
 
 @nb.njit(cache=True)
@@ -97,12 +154,12 @@ def _curve_array(data, what, v, out):
 
 # Scalar calls from Python: the dispatcher's type resolution and unboxing a namedtuple of arrays
 # cost more than the evaluation, so Curve's scalar path calls the compiled entry point of this
-# kernel directly with one packed array (row 0: v_max, shift, base, model, quantity).
+# kernel directly with one packed array (last row: v_max, shift, base, model, quantity).
 @nb.njit(cache=True)
 def _scalar_packed(packed, v):
-    # row 0 is metadata, so cell i is row i + 1: base - 1
-    return cells_or_closed_form(packed, packed[0, 0], int(packed[0, 1]), int(packed[0, 2]) - 1,
-                                int(packed[0, 3]), int(packed[0, 4]), v)
+    # the last row is metadata; the cells keep their row numbers
+    m = packed.shape[0] - 1
+    return curve_value(packed, packed[m, 0], int(packed[m, 1]), int(packed[m, 2]), int(packed[m, 4]), v)
 
 
 _SCALAR_SIG = (nb.float64[:, ::1], nb.float64)
@@ -118,14 +175,18 @@ def _scalar_entry():
 def _pack(data, what, rows):
     meta = np.zeros((1, rows.shape[1]))
     meta[0, :5] = (data.v_max, data.shift, data.base, data.model, what)
-    return np.ascontiguousarray(np.vstack([meta, rows]))
+    return np.ascontiguousarray(np.vstack([rows, meta]))
 
 
 # --- building ---------------------------------------------------------------------------------
 
 def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
-                     bits_per_octave=BITS_PER_OCTAVE):
-    """Tabulate one material: returns :class:`CurveData` (no validation of eps_y/nu here)."""
+                     bits_per_octave=BITS_PER_OCTAVE, jg_values=None):
+    """Tabulate one material: returns :class:`CurveData` (no validation of eps_y/nu here).
+
+    ``jg_values(v)``, if given, replaces the direct solver above 1.9^1.25: it returns the (3, n)
+    array of w_m*, e and 1 - e^2 at the speeds v (used by bench/ to build a curve from a table).
+    """
     model = unloading_code(unloading)
     w_hi = w_upper(eps_y, nu, extrapolate)
     limit = v1_star_limit(eps_y, nu, extrapolate)
@@ -134,17 +195,22 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     elif v_max > limit:
         raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate)
     shift = MANTISSA_BITS - bits_per_octave
-    if v_max <= V_SWITCH:  # all closed form: a single dummy cell
-        rows = np.zeros((1, 8))
-        return CurveData(model, float(v_max), shift, 0, rows, rows, rows)
+    hertz = hertz_rows(model)
+    if v_max <= V_SWITCH:  # closed forms only
+        return CurveData(model, float(v_max), shift, 0, *[np.ascontiguousarray(h) for h in hertz])
     base, edges = cell_edges(V_SWITCH, v_max, bits_per_octave)
     nodes = chebyshev_nodes(edges)
     flat = nodes.ravel()
-    w = np.empty(flat.size)
-    omega_m_sorted_kernel(flat, eps_y, nu, w_hi, w)
-    vals = _restitution_at(flat, w, eps_y, nu, model)
-    rows = [np.ascontiguousarray(fit_cells(edges, q.reshape(nodes.shape))) for q in (w, vals[0], vals[1])]
-    return CurveData(model, float(v_max), shift, int(base), *rows)
+    if jg_values is None:
+        w = np.empty(flat.size)
+        omega_m_sorted_kernel(flat, eps_y, nu, w_hi, w)
+        vals = np.concatenate([w[None], _restitution_at(flat, w, eps_y, nu, model)])
+    else:
+        vals = np.asarray(jg_values(flat))
+    rows = [np.ascontiguousarray(np.concatenate([h, fit_cells(edges, q.reshape(nodes.shape))]))
+            for h, q in zip(hertz, vals)]
+    # JG cell of key k is row k - base + N_HERTZ
+    return CurveData(model, float(v_max), shift, int(base) - N_HERTZ, *rows)
 
 
 @nb.njit(cache=True)
@@ -268,8 +334,9 @@ SceneData = namedtuple("SceneData", ["model", "v_max", "shift", "base", "offset"
                                      "e_rows", "loss_rows"])
 SceneData.__doc__ = """Numba-friendly data of a :class:`Scene`: the curves of several materials.
 
-Per material k: v_max[k], base[k] and the first row offset[k] of its cells in the concatenated
-*_rows arrays; model and shift are shared. See :func:`fastrest.jit.e_scene`.
+The *_rows arrays hold the Hertz-range rows (shared) and then each material's JG rows; per
+material k: v_max[k], base[k] and offset[k], the number of JG rows of materials before k; model and
+shift are shared. See :func:`fastrest.jit.e_scene`.
 """
 
 
@@ -279,9 +346,8 @@ def scene_value(data, what, k, v):
     if not (k >= 0 and k < data.v_max.size):
         return np.nan
     rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
-    # material k's cells start at row offset[k]: shift its base key accordingly
-    return cells_or_closed_form(rows, data.v_max[k], data.shift, data.base[k] - data.offset[k],
-                                data.model, what, v)
+    # material k's JG rows come after those of materials 0..k-1: shift its base key accordingly
+    return curve_value(rows, data.v_max[k], data.shift, data.base[k] - data.offset[k], what, v)
 
 
 @nb.njit(cache=True)
@@ -308,9 +374,12 @@ class Scene:
         shifts = {c.data.shift for c in self.curves}
         if len(shifts) != 1:
             raise ValueError("all curves of a scene must use the same cells per octave")
-        sizes = [c.data.e_rows.shape[0] for c in self.curves]
+        # the Hertz rows (the same for every material) once, then each material's JG rows
+        sizes = [c.data.e_rows.shape[0] - N_HERTZ for c in self.curves]
         offset = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
-        cat = [np.ascontiguousarray(np.concatenate([getattr(c.data, f) for c in self.curves]))
+        first = self.curves[0].data
+        cat = [np.ascontiguousarray(np.concatenate([getattr(first, f)[:N_HERTZ]]
+                                                   + [getattr(c.data, f)[N_HERTZ:] for c in self.curves]))
                for f in ("omega_rows", "e_rows", "loss_rows")]
         self.data = SceneData(models.pop(), np.array([c.v_max for c in self.curves]), shifts.pop(),
                               np.array([c.data.base for c in self.curves], dtype=np.int64), offset, *cat)

@@ -1,6 +1,6 @@
 """Piecewise-polynomial interpolation on cells indexed by the bits of the float.
 
-The fast paths tabulate smooth functions of V1* on (1.9^1.25, v_max]. Cells follow the binary
+The fast paths tabulate smooth functions of V1* on (1, 1.9^1.25] and (1.9^1.25, v_max]. Cells follow the binary
 representation of V1*: each octave [2^E, 2^(E+1)) is split into 2^K equal cells, so the cell of a
 positive float v is ``(bits(v) >> (52 - K)) - base``: an integer shift, no logarithm (the log is the
 dominant cost of a uniform-in-log grid). Cells are therefore geometric across octaves and uniform
@@ -9,7 +9,7 @@ within one, with relative width between 2^-K and 2^(1-K).
 Each cell stores one 64-byte row ``[center, 1/half_width, c0, ..., c5]``; the value is the degree-5
 polynomial sum c_k u^k in u = (v - center)/half_width in [-1, 1], interpolating the function at the
 cell's 6 Chebyshev points (first kind, so never at the cell's ends, where the JG law switches
-branch). The first cell starts exactly at V1* = 1.9^1.25 and the last ends at v_max, so no cell
+branch). A cell boundary sits exactly at V1* = 1.9^1.25 and the last cell ends at v_max, so no cell
 straddles the kink at w* = 1.9 or the end of the domain.
 """
 import math
@@ -65,11 +65,45 @@ def cell_edges(v_lo, v_hi, bits_per_octave):
     return base, np.stack([lo, hi], axis=1)
 
 
+def two_level_cells(v_lo, v_split, v_hi, bits_fine, bits):
+    """Cells over [v_lo, v_hi]: 2^bits_fine per octave below ``v_split`` (a power of two), 2^bits
+    from it on. Returns (base_fine, base, edges): the row of v is ``key_fine(v) - base_fine`` for
+    v < v_split and ``key(v) - base`` otherwise (a compare and a select; see :func:`two_level_index`).
+    """
+    if v_split <= v_lo:  # no fine region
+        base, edges = cell_edges(v_lo, v_hi, bits)
+        return base, base, edges
+    if v_hi < v_split:
+        base_f, edges = cell_edges(v_lo, v_hi, bits_fine)
+        return base_f, base_f, edges
+    shift = MANTISSA_BITS - bits_fine
+    base_f = cell_key(v_lo, bits_fine)
+    keys = np.arange(base_f, cell_key(v_split, bits_fine), dtype=np.int64)
+    fine = np.stack([(keys << shift).view(np.float64), ((keys + 1) << shift).view(np.float64)], axis=1)
+    fine[0, 0] = v_lo
+    base, coarse = cell_edges(v_split, v_hi, bits)
+    return base_f, base - fine.shape[0], np.concatenate([fine, coarse])
+
+
 def chebyshev_nodes(edges):
     """The Chebyshev points of every cell, shape (ncell, DEGREE + 1), increasing."""
     center = 0.5 * (edges[:, 0] + edges[:, 1])
     half = 0.5 * (edges[:, 1] - edges[:, 0])
     return center[:, None] + half[:, None] * CHEB_U[None, :]
+
+
+def values_to_coeffs(values):
+    """Monomial coefficients (in u) of the degree-5 polynomials through values at CHEB_U (last axis).
+
+    The values' first entry is taken out before the matrix product and added back to c0: the
+    higher coefficients are then computed from differences, which are exact and small, instead of
+    by cancellation between large terms (that cost ~10 ulp; this keeps a cell within ~1-2 ulp of
+    what it interpolates). A constant cell gets exactly [value, 0, ..., 0].
+    """
+    ref = values[..., :1]
+    coeffs = (values - ref) @ VALUES_TO_COEFFS.T
+    coeffs[..., 0] += ref[..., 0]
+    return coeffs
 
 
 def fit_cells(edges, values):
@@ -79,11 +113,10 @@ def fit_cells(edges, values):
     """
     center = 0.5 * (edges[:, 0] + edges[:, 1])
     half = 0.5 * (edges[:, 1] - edges[:, 0])
-    coeffs = values @ VALUES_TO_COEFFS.T
     rows = np.empty(values.shape[:-1] + (ROW,))
     rows[..., 0] = center
     rows[..., 1] = 1.0 / half
-    rows[..., 2:] = coeffs
+    rows[..., 2:] = values_to_coeffs(values)
     return rows
 
 
@@ -91,6 +124,13 @@ def fit_cells(edges, values):
 def cell_index(v, shift, base):
     """Index of the cell holding v > 0 (no bounds check)."""
     return (float_bits(v) >> shift) - base
+
+
+@nb.njit(cache=True, inline="always")
+def two_level_index(v, v_split, shift_fine, base_fine, shift, base):
+    """Row of v > 0 in a :func:`two_level_cells` layout (no bounds check)."""
+    b = float_bits(v)
+    return (b >> shift_fine) - base_fine if v < v_split else (b >> shift) - base
 
 
 @nb.njit(cache=True, inline="always")

@@ -6,12 +6,14 @@ A table holds, on a grid over the material, everything the fast multi-material p
   up to w* = 425 (by composite Gauss-Legendre quadrature, :mod:`fastrest.energy`);
 * ``omega_m_star``, ``e_jcg``, ``loss_jcg``, ``e_etsion``, ``loss_etsion`` (c_eps_y, nu, cell, node):
   the direct solver's w_m*, e and 1 - e^2 at the Chebyshev points of bit-indexed cells in V1*
-  (:mod:`fastrest.interpolation`) from 1.9^1.25 up to the largest V1* any grid material allows,
-  on a grid over s = C(nu) eps_y (mapped, see :func:`xi_range`) and nu.
+  (:mod:`fastrest.interpolation`) from 1.9^1.25 up to the largest V1* any grid material allows
+  (2^4 cells per octave below V1* = 8, where 1 - e^2 is small and curved, 2^3 above), on a grid
+  over s = C(nu) eps_y (mapped, see :func:`xi_range`) and nu.
 
 Evaluation at (V1*, eps_y, nu): the degree-5 polynomial of V1*'s cell at each of the 6 x 6 nearest
-material nodes, combined with 6-point Lagrange weights in the mapped s and in nu. V1* <= 1.9^1.25
-uses the exact closed forms (no table). Nodes are computed past w* = 425 where a neighbour needs it
+material nodes, combined with 6-point Lagrange weights in the mapped s and in nu. Below 1.9^1.25
+the answer does not depend on the material: the closed forms (Hertz loading), evaluated by the same
+few-ulp cells as :mod:`fastrest.curve`; V1* <= 1 is exact (elastic). Nodes are computed past w* = 425 where a neighbour needs it
 (the same formulas as a smooth extension, even past a/R = 1), but a query whose interpolated w_m*
 exceeds 425 (by more than :data:`OMEGA_LIMIT_TOL`) is refused.
 """
@@ -30,11 +32,11 @@ from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
-from .curve import closed_form
+from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
 from .direct import impact_array, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
-from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, VALUES_TO_COEFFS, cell_edges, cell_index,
-                            chebyshev_nodes)
+from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, chebyshev_nodes,
+                            two_level_cells, two_level_index, values_to_coeffs)
 from .unloading import ETSION, JCG, restitution_kernel, unloading_code
 
 QUANTITIES = ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion")
@@ -55,7 +57,7 @@ OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
 #: error of several grids, reported in bench/RESULTS.md).
 DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=64,
                     nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=6, bits_per_octave=3,
-                    c_eps_y_map_rate=30.0)
+                    fine_bits_per_octave=4, fine_v1_star_max=8.0, c_eps_y_map_rate=30.0)
 
 
 def default_table_path():
@@ -95,9 +97,15 @@ def normalise_grid(grid=None, **overrides):
     for k, m in (("n_eps_y", STENCIL_EPS), ("n_nu", STENCIL_NU)):
         if g[k] < m:
             raise ValueError(f"{k} must be >= {m} (the interpolation stencil's size); got {g[k]}")
-    g["bits_per_octave"] = int(g["bits_per_octave"])
-    if not 1 <= g["bits_per_octave"] <= 10:
-        raise ValueError(f"bits_per_octave must be in [1, 10]; got {g['bits_per_octave']}")
+    for k in ("bits_per_octave", "fine_bits_per_octave"):
+        g[k] = int(g[k])
+        if not 1 <= g[k] <= 10:
+            raise ValueError(f"{k} must be in [1, 10]; got {g[k]}")
+    g["fine_v1_star_max"] = float(g["fine_v1_star_max"])
+    m, _ = math.frexp(g["fine_v1_star_max"])
+    if not (m == 0.5 and 1.0 <= g["fine_v1_star_max"] <= 2.0**20):
+        raise ValueError("fine_v1_star_max (end of the finer V1* cells) must be a power of two in "
+                         f"[1, 2^20]; got {g['fine_v1_star_max']}")
     for k in ("eps_y_min", "eps_y_max", "nu_min", "nu_max", "c_eps_y_map_rate"):
         g[k] = float(g[k])
     if not g["c_eps_y_map_rate"] >= 0:
@@ -180,16 +188,26 @@ def grid_axes(g):
     # V1* range: up to the largest w* = 425 speed over the grid's materials
     v_top = max(v1_star_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
                 for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
-    base, edges = cell_edges(V_SWITCH, v_top, g["bits_per_octave"])
+    layout = cell_layout(g, v_top)
     omega = np.concatenate([np.linspace(0.0, W_SWITCH, OMEGA_GRID_HERTZ),
                             np.geomspace(W_SWITCH, OMEGA_M_STAR_MAX, OMEGA_GRID_JG + 1)[1:]])
-    return s, eps, nus, v_top, base, edges, omega
+    return s, eps, nus, v_top, layout, omega
+
+
+def cell_layout(g, v_top):
+    """The V1* cells over (1.9^1.25, v_top]: 2^fine_bits_per_octave per octave below
+    fine_v1_star_max (where 1 - e^2 is small and curved, just above the kink at w* = 1.9), then
+    2^bits_per_octave. Returns dict(base_fine, base, edges)."""
+    base_f, base, edges = two_level_cells(V_SWITCH, g["fine_v1_star_max"], v_top,
+                                          g["fine_bits_per_octave"], g["bits_per_octave"])
+    return dict(base_fine=int(base_f), base=int(base), edges=edges)
 
 
 def generate(grid=None, progress=None):
     """Compute a table's arrays (no I/O). ``progress``: None = bar if a terminal, False = none."""
     g = normalise_grid(grid)
-    s, eps, nus, v_top, base, edges, omega = grid_axes(g)
+    s, eps, nus, v_top, layout, omega = grid_axes(g)
+    edges = layout["edges"]
     eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y"])  # W* grid: plain eps_y
     nodes = chebyshev_nodes(edges)
     flat = nodes.ravel()
@@ -208,7 +226,8 @@ def generate(grid=None, progress=None):
         vals[:, i] = out
         _generate_row(np.full(nus.size, eps_w[i]), nus, flat[:0], omega, out[:, :, :0], w_star[i])
     v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
-    return dict(grid=g, c_eps_y=s, eps_y=eps_w, nu=nus, v_top=v_top, base=base, edges=edges, nodes=nodes,
+    return dict(grid=g, c_eps_y=s, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=layout["base_fine"],
+                base=layout["base"], edges=edges, nodes=nodes,
                 omega_star=omega, W_star=w_star, v1_star_max=v_max,
                 values=vals.reshape(vals.shape[:3] + nodes.shape))
 
@@ -216,15 +235,18 @@ def generate(grid=None, progress=None):
 # --- evaluation -------------------------------------------------------------------------------
 
 TableData = namedtuple("TableData", ["s_rate", "xi0", "inv_h_xi", "n_s", "nu0", "inv_h_nu", "n_nu",
-                                     "eps_lo", "eps_hi", "nu_lo", "nu_hi", "shift", "base", "v_top",
-                                     "v_safe", "cells", "coef"])
+                                     "eps_lo", "eps_hi", "nu_lo", "nu_hi", "v_split", "shift_fine",
+                                     "base_fine", "shift", "base", "v_top", "v_safe", "cells", "coef",
+                                     "hertz"])
 TableData.__doc__ = """Numba-friendly data of a :class:`Table` (see :mod:`fastrest.jit`).
 
 eps_y enters through s = C(nu) eps_y and xi = expm1(s_rate s)/s_rate, uniform from xi0 with
 spacing 1/inv_h_xi.
-cells: (ncell, 2) [center, 1/half_width] of each V1* cell; coef: (5, ncell, n_eps, n_nu, 6)
-polynomial coefficients of omega_m_star, e_jcg, loss_jcg, e_etsion, loss_etsion; v_safe: below this
-V1* every material of the table has w_m* <= 425.
+cells: (ncell, 2) [center, 1/half_width] of each V1* cell (row of V1*:
+:func:`fastrest.interpolation.two_level_index` with v_split, shift_fine, base_fine, shift, base);
+coef: (5, ncell, n_eps, n_nu, 6) polynomial coefficients of omega_m_star, e_jcg, loss_jcg, e_etsion,
+loss_etsion; v_safe: below this V1* every material of the table has w_m* <= 425; hertz: (5 *
+N_HERTZ, 8) rows of the material-independent Hertz-range closed forms (see :mod:`fastrest.curve`).
 """
 
 
@@ -282,13 +304,17 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     if not (eps_y >= tab.eps_lo and eps_y <= tab.eps_hi and nu >= tab.nu_lo and nu <= tab.nu_hi):
         return np.nan
     if not v > V_SWITCH:
-        if v >= 0.0:
-            r = closed_form(v, 0 if q < 3 else 1)
-            return r[0] if q == 0 else r[1 + (q + 1) % 2]
+        if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
+            r = cell_polynomial(tab.hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
+            return r * (v - 1.0) if q == 2 or q == 4 else r
+        if v >= 0.0:  # elastic, exact
+            if q == 0:
+                return v**0.8
+            return 1.0 if q == 1 or q == 3 else 0.0
         return np.nan
     if not v <= tab.v_top:
         return np.nan
-    cell = cell_index(v, tab.shift, tab.base)
+    cell = two_level_index(v, tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
     u = (v - tab.cells[cell, 0]) * tab.cells[cell, 1]
     s = 1.295 * math.exp(0.736 * nu) * eps_y
     xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
@@ -340,6 +366,20 @@ def _table_array_parallel(tab, q, v, eps_y, nu, out):
         out[k] = table_value(tab, q, v[k], eps_y[k], nu[k])
 
 
+def _hertz_table_rows():
+    """Hertz-range rows for the table's five quantities (q * N_HERTZ + cell)."""
+    jcg, ets = hertz_rows(JCG), hertz_rows(ETSION)
+    return np.ascontiguousarray(np.concatenate([jcg[0], jcg[1], jcg[2], ets[1], ets[2]]))
+
+
+def _entry_point(kernel, sig):
+    """The compiled C entry point of ``kernel`` for ``sig``: skips the dispatcher's type resolution
+    (which for a namedtuple of arrays costs microseconds); the dispatcher itself if unavailable."""
+    kernel.compile(sig)
+    cres = kernel.overloads.get(tuple(sig))
+    return getattr(cres, "entry_point", None) or kernel
+
+
 #: Batches at least this large use all cores (the threads' start-up costs ~10 us).
 PARALLEL_MIN_POINTS = 20000
 
@@ -365,7 +405,7 @@ class Table:
         eps, nus, edges = gen["eps_y"], gen["nu"], gen["edges"]
         center = 0.5 * (edges[:, 0] + edges[:, 1])
         half = 0.5 * (edges[:, 1] - edges[:, 0])
-        coef = gen["values"] @ VALUES_TO_COEFFS.T  # (5, n_eps, n_nu, ncell, 6)
+        coef = values_to_coeffs(gen["values"])  # (5, n_eps, n_nu, ncell, 6)
         coef = np.ascontiguousarray(coef.transpose(0, 3, 1, 2, 4))
         xi0, xi1 = xi_range(g)
         self.data = TableData(
@@ -373,11 +413,13 @@ class Table:
             int(gen["c_eps_y"].size),
             float(nus[0]), float((nus.size - 1) / (nus[-1] - nus[0])), int(nus.size),
             float(eps[0]), float(eps[-1]), float(nus[0]), float(nus[-1]),
+            g["fine_v1_star_max"], MANTISSA_BITS - g["fine_bits_per_octave"], int(gen["base_fine"]),
             MANTISSA_BITS - g["bits_per_octave"], int(gen["base"]), float(gen["v_top"]),
             float(np.min(gen["v1_star_max"])), np.ascontiguousarray(np.stack([center, 1.0 / half], 1)),
-            coef)
+            coef, _hertz_table_rows())
         self.grid = g
         self.gen = gen
+        self._entry = None
         self.attrs = attrs or {}
         self.path = path
 
@@ -386,6 +428,20 @@ class Table:
         return (f"Table(eps_y=[{g['eps_y_min']}, {g['eps_y_max']}] x {g['n_eps_y']}, "
                 f"nu=[{g['nu_min']}, {g['nu_max']}] x {g['n_nu']}, cells={self.data.cells.shape[0]}, "
                 f"path={self.path!r})")
+
+    def _scalar(self, q, v1_star, eps_y, nu):
+        """One point from Python floats: the kernel's compiled entry point (~1 us instead of ~30 us
+        through the array machinery); anything unusual (NaN result, outside the validated range,
+        which warns) goes the checked array way."""
+        if (type(v1_star) is float and type(eps_y) is float and type(nu) is float
+                and EPS_Y_VALIDATED[0] <= eps_y <= EPS_Y_VALIDATED[1] and NU_VALIDATED[0] <= nu <= NU_VALIDATED[1]):
+            if self._entry is None:
+                self._entry = _entry_point(table_value, (nb.typeof(self.data), nb.int64, nb.float64,
+                                                          nb.float64, nb.float64))
+            r = self._entry(self.data, q, v1_star, eps_y, nu)
+            if r == r:
+                return r
+        return self._eval(q, v1_star, eps_y, nu)
 
     def _eval(self, q, v1_star, eps_y, nu):
         (v, e, n), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
@@ -422,15 +478,15 @@ class Table:
 
     def omega_m_star(self, v1_star, eps_y, nu):
         """Interpolated w_m* (-); see :func:`fastrest.direct.omega_m_star` for the parameters."""
-        return self._eval(0, v1_star, eps_y, nu)
+        return self._scalar(0, v1_star, eps_y, nu)
 
     def e_star(self, v1_star, eps_y, nu, unloading="jcg"):
         """Interpolated e (-); see :func:`fastrest.direct.e_star`."""
-        return self._eval(1 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
+        return self._scalar(1 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
 
     def loss_star(self, v1_star, eps_y, nu, unloading="jcg"):
         """Interpolated 1 - e^2 (-); see :func:`fastrest.direct.loss_star`."""
-        return self._eval(2 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
+        return self._scalar(2 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
 
     # --- accuracy against the direct solver ---
     def measure_error(self, n_points=4000, seed=12345):
@@ -521,8 +577,10 @@ def write(gen, path, errors=None):
     attrs = dict(MODEL_ATTRS)
     attrs.update({
         "grid": g,
-        "cells": {"bits_per_octave": g["bits_per_octave"], "degree": DEGREE, "count": ncell,
-                  "first_key": int(gen["base"]), "v1_star_top": float(gen["v_top"])},
+        "cells": {"bits_per_octave": g["bits_per_octave"], "fine_bits_per_octave": g["fine_bits_per_octave"],
+                  "fine_v1_star_max": g["fine_v1_star_max"], "degree": DEGREE, "count": ncell,
+                  "first_key_fine": int(gen["base_fine"]), "first_key": int(gen["base"]),
+                  "v1_star_top": float(gen["v_top"])},
         "quadrature": {"rule": "composite Gauss-Legendre in ln w", "order": GL_ORDER,
                        "panel_width_ln_w": PANEL_WIDTH, "newton_step_tolerance_ln_w": 1e-9},
         "validated_range": {"eps_y": list(EPS_Y_VALIDATED), "nu": list(NU_VALIDATED),
@@ -556,12 +614,16 @@ def read(path):
     """Read a table file into a :class:`Table` (validates format version and checksum)."""
     td = _hdf5.read_table(path)
     a = td.attrs
+    if a.get("format_version") != _hdf5.FORMAT_VERSION:
+        raise _hdf5.TableFileError(
+            f"{path}: table format version {a.get('format_version')} is older than this fastrest's "
+            f"({_hdf5.FORMAT_VERSION}, different V1* cell layout); rebuild it with `fastrest build`")
     try:
         g = normalise_grid(a["grid"])
         cells = a["cells"]
         ds = td.datasets
         gen = dict(grid=g, c_eps_y=td.axes["c_eps_y"], eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=cells["v1_star_top"],
-                   base=cells["first_key"], edges=np.stack([td.axes["cell"], ds["cell_end"]], 1),
+                   base_fine=cells["first_key_fine"], base=cells["first_key"], edges=np.stack([td.axes["cell"], ds["cell_end"]], 1),
                    nodes=ds["v1_star_nodes"], omega_star=td.axes["omega_star"], W_star=ds["W_star"],
                    v1_star_max=ds["v1_star_max"], values=np.stack([ds[q] for q in QUANTITIES]))
         if cells["degree"] != DEGREE or not np.array_equal(td.axes["node"], CHEB_U):
@@ -578,12 +640,12 @@ def _check_axes_match_grid(gen):
     nus = np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
     s = s_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
     eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y"])
-    base, edges = cell_edges(V_SWITCH, gen["v_top"], g["bits_per_octave"])
+    layout = cell_layout(g, gen["v_top"])
     for name, want, got in (("nu", nus, gen["nu"]), ("c_eps_y", s, gen["c_eps_y"]),
-                            ("eps_y", eps_w, gen["eps_y"]), ("cell", edges, gen["edges"])):
+                            ("eps_y", eps_w, gen["eps_y"]), ("cell", layout["edges"], gen["edges"])):
         if want.shape != got.shape or not np.allclose(want, got, rtol=1e-12, atol=0):
             raise ValueError(f"axis {name!r} does not match the grid attributes")
-    if base != gen["base"]:
+    if layout["base"] != gen["base"] or layout["base_fine"] != gen["base_fine"]:
         raise ValueError("cell keys do not match the grid attributes")
 
 

@@ -392,3 +392,33 @@ def test_scene_inputs_and_errors():
             s.loss(bad, 0)
     with pytest.raises(ValueError):
         fastrest.scene([])
+
+
+def _mp_hertz(v):
+    """Exact Hertz-range closed forms at 1 < V1* <= 1.9^1.25 in 40-digit mpmath (JGM eqs 19, 35):
+    w_m* = V1*^0.8 and, JCG, 1 - e^2 = w_res/w_m = 1.02 (1 - ((w_m + 5.9)/6.9)^-0.54)."""
+    import mpmath as mp
+    with mp.workdps(40):
+        w = mp.mpf(v) ** mp.mpf("0.8")
+        loss = mp.mpf("1.02") * (1 - ((w + mp.mpf("5.9")) / mp.mpf("6.9")) ** mp.mpf("-0.54"))
+        return float(w), float(mp.sqrt(1 - loss)), float(loss)
+
+
+def test_hertz_range_cells_reproduce_closed_form_to_a_few_ulp():
+    """Below 1.9^1.25 the curve evaluates the closed forms by polynomial cells: they must agree with
+    the exact closed form (mpmath) to within 1e-15 relative (~4.5 ulp) for w_m* and e, and 2e-15 for
+    1 - e^2 (whose float closed form, expm1/log1p, is itself off by up to ~3 ulp), including V1* -> 1."""
+    rng = np.random.default_rng(SEED + 7)
+    v = np.concatenate([np.exp(rng.uniform(0.0, math.log(V_SWITCH), 400)),
+                        1.0 + np.logspace(-15, -1, 30), [math.nextafter(1.0, 2.0), V_SWITCH,
+                                                         math.nextafter(V_SWITCH, 0.0), 2.0, 1.5]])
+    v = v[(v > 1.0) & (v <= V_SWITCH)]
+    ref = np.array([_mp_hertz(x) for x in v]).T
+    c = fastrest.curve(0.005, 0.33, v_max=50.0)
+    for got, want, name, tol in ((c.omega_m(v), ref[0], "w_m", 1e-15), (c.e(v), ref[1], "e", 1e-15),
+                                 (c.loss(v), ref[2], "loss", 2e-15)):
+        rel = rel_errors(got, want)
+        assert rel.max() <= tol, (name, rel.max(), v[np.argmax(rel)])
+    # Etsion: e = 1 and 1 - e^2 = 0 exactly under Hertz loading
+    ce = fastrest.curve(0.005, 0.33, "etsion", v_max=50.0)
+    assert np.all(ce.e(v) == 1.0) and np.all(ce.loss(v) == 0.0)

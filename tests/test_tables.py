@@ -34,11 +34,11 @@ QUANTITIES = ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion")
 ETSION_LOSS_FLOOR = 1e-3
 
 # Bounds for the default table (64 x 6 nodes) over the validated domain, 6000 random points +
-# 1040 hard cases (seed below); the Etsion loss is relative to max(|loss|, 1e-3), as it changes
-# sign. The issue asks <= 1e-9 for multi-material points; the default table meets it for w_m* and e
-# (bench/RESULTS.md). 1 - e^2 is not met (~5e-9 just above the switch, where it is small):
-# its bounds record the measured state, not the target.
-TOL_TABLE = {"omega_m_star": 1e-9, "e_jcg": 1e-9, "e_etsion": 1e-9, "loss_jcg": 1e-8,
+# 1040 hard cases (seed below). The issue asks <= 1e-9 for multi-material points: met for w_m*, e
+# and the JCG 1 - e^2 (finer V1* cells below V1* = 8, where 1 - e^2 is small and curved). The Etsion
+# 1 - e^2 changes sign just above the switch for nu < ~0.32, so its error is taken relative to
+# max(|loss|, 1e-3): ~2e-7 there, i.e. ~2e-10 absolute (not met as a relative 1e-9; README).
+TOL_TABLE = {"omega_m_star": 1e-9, "e_jcg": 1e-9, "e_etsion": 1e-9, "loss_jcg": 1e-9,
              "loss_etsion": 1e-6}
 
 SEED = 424242
@@ -447,8 +447,19 @@ def test_future_format_version_rejected(small, tmp_path):
     assert "version" in msg
 
 
+def test_older_format_version_rejected(small, tmp_path):
+    """A format-1 table (one V1* cell size) must not load into the two-level cell kernel."""
+    path, _ = small
+    bad = copy_of(path, tmp_path, "old.h5")
+    with h5py.File(bad, "r+") as f:
+        f.attrs["format_version"] = np.int64(1)
+    msg = assert_rejected(bad)
+    assert "older" in msg and "fastrest build" in msg
+
+
 @pytest.mark.parametrize("key, value", [("c_eps_y_map_rate", 31.0), ("eps_y_max", 0.0101),
-                                        ("nu_min", 0.21)])
+                                        ("nu_min", 0.21), ("fine_v1_star_max", 16.0),
+                                        ("fine_bits_per_octave", 5)])
 def test_tampered_grid_attribute_rejected(small, tmp_path, key, value):
     """The grid attribute drives the interpolation but is not covered by the array checksum: a
     damaged value must not load silently (it would give wrong numbers). The stored axes (eps_y,
@@ -595,3 +606,23 @@ def test_cached_table_default_grid_is_shipped_table(cache):
     assert Path(t.path).resolve() == tables.default_table_path().resolve()
     assert calls == []
     assert not d.exists() or list(d.iterdir()) == []
+
+
+def test_scalar_fast_path_matches_array_path_and_still_checks():
+    """Python floats take the compiled entry point; results equal the array path bit for bit, and
+    bad or out-of-range scalars still raise the array path's errors."""
+    rng = np.random.default_rng(SEED + 3)
+    for _ in range(50):
+        v = float(np.exp(rng.uniform(0.0, 6.5)))
+        e = float(rng.uniform(*EPS_RANGE))
+        n = float(rng.uniform(*NU_RANGE))
+        for unloading in ("jcg", "etsion"):
+            got = fastrest.e_star(v, e, n, unloading)
+            assert type(got) is float
+            assert got == fastrest.e_star(np.array([v]), np.array([e]), np.array([n]), unloading)[0]
+            assert fastrest.loss_star(v, e, n, unloading) == fastrest.loss_star(np.array([v]), e, n, unloading)[0]
+        assert fastrest.omega_m_star(v, e, n) == fastrest.omega_m_star(np.array([v]), e, n)[0]
+    for args, word in (((-1.0, 0.005, 0.33), "v1_star"), ((math.nan, 0.005, 0.33), "v1_star"),
+                       ((1e5, 0.005, 0.33), "425"), ((5.0, 0.02, 0.33), "eps_y"), ((5.0, 0.005, 0.49), "nu")):
+        with pytest.raises(ValueError, match=word):
+            fastrest.e_star(*args)
