@@ -26,7 +26,7 @@ from ._validation import OMEGA_M_STAR_MAX, as_float_array, check_eps_y, check_nu
 from .direct import raise_out_of_range, v1_star_limit, w_upper
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
-from .interpolation import MANTISSA_BITS, cell_edges, cell_index, cell_polynomial, chebyshev_nodes, fit_cells
+from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits
 from .unloading import ETSION, jcg_residual_ratio, restitution_kernel, unloading_code
 
 #: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-14 on e and w_m* (bench/, section 1).
@@ -109,10 +109,14 @@ def curve_value(rows, v_max, shift, base, what, v):
     """
     if v > 1.0:
         if v <= v_max:
-            if v <= V_SWITCH:
-                r = cell_polynomial(rows, cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
-                return r * (v - 1.0) if what == 2 else r
-            return cell_polynomial(rows, cell_index(v, shift, base), v)
+            # Hertz or JG cell by a select, not a branch: mixed speeds would mispredict
+            hertz = v <= V_SWITCH
+            b = float_bits(v)
+            i = (b >> HERTZ_SHIFT) - HERTZ_BASE if hertz else (b >> shift) - base
+            r = cell_polynomial(rows, i, v)
+            if what == 2 and hertz:
+                r *= v - 1.0
+            return r
         return np.nan
     if v >= 0.0 and v <= v_max:
         if what == 0:

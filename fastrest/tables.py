@@ -35,7 +35,7 @@ from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_s
 from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
 from .direct import impact_array, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
-from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, chebyshev_nodes,
+from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, chebyshev_nodes, fma,
                             two_level_cells, two_level_index, values_to_coeffs)
 from .unloading import ETSION, JCG, restitution_kernel, unloading_code
 
@@ -338,7 +338,11 @@ def _interpolant_array(tab, q, v, eps_y, nu, out):
 
 @nb.njit(cache=True, inline="always")
 def _stencil_sum(coef, q, cell, i, j, u, we, wn):
-    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one polynomial (Estrin)."""
+    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one polynomial (Estrin).
+
+    The sums stay plain multiply-adds: fused ones lengthen their dependency chains (measured ~10 %
+    slower); the final polynomial uses fma.
+    """
     c0 = c1 = c2 = c3 = c4 = c5 = 0.0
     for a in range(STENCIL_EPS):
         for b in range(STENCIL_NU):
@@ -351,7 +355,7 @@ def _stencil_sum(coef, q, cell, i, j, u, we, wn):
             c4 += w * c[4]
             c5 += w * c[5]
     u2 = u * u
-    return (c0 + u * c1) + u2 * (c2 + u * c3) + (u2 * u2) * (c4 + u * c5)
+    return fma(u2 * u2, fma(u, c5, c4), fma(u2, fma(u, c3, c2), fma(u, c1, c0)))
 
 
 @nb.njit(cache=True)
