@@ -81,6 +81,15 @@ def _cmd_e(args):
     return 0
 
 
+def _parse_blocks(text):
+    if text.strip().lower() in ("none", ""):
+        return []
+    try:
+        return [[float(v), int(n)] for v, n in (item.split(":") for item in text.split(","))]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected V:N[,V:N...] (e.g. 128:24,512:40) or none; got {text!r}") from None
+
+
 def _cmd_build(args):
     from . import tables
 
@@ -190,6 +199,11 @@ def main(argv=None):
     for k, typ in (("eps_y_min", float), ("eps_y_max", float), ("n_eps_y", int), ("nu_min", float),
                    ("nu_max", float), ("n_nu", int), ("bits_per_octave", int), ("c_eps_y_map_rate", float)):
         pb.add_argument("--" + k.replace("_", "-"), dest=k, type=typ)
+    for k, typ in (("fine_bits_per_octave", int), ("fine_v1_star_max", float), ("n_eps_y_energy", int)):
+        pb.add_argument("--" + k.replace("_", "-"), dest=k, type=typ)
+    pb.add_argument("--eps-y-blocks", dest="eps_y_blocks", type=_parse_blocks, metavar="V:N,V:N",
+                    help="cells ending at or below V1* = V (a power of two) use N nodes in C(nu) eps_y, "
+                         "e.g. 128:24,256:32,512:40 (the default); 'none' for n_eps_y everywhere")
     pb.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     pb.set_defaults(func=_cmd_build)
 

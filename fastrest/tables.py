@@ -54,10 +54,14 @@ OMEGA_GRID_HERTZ = 20  # nodes of the W* grid on [0, 1.9]
 OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
 
 #: Default grid of the shipped table (validated range of JGM; spacing chosen by measuring the
-#: error of several grids, reported in bench/RESULTS.md).
-DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=64,
+#: error of several grids, reported in bench/RESULTS.md). The error across materials grows with
+#: V1* (the law's cos(pi a/R) term varies fastest near w* = 425), so the cells up to V1* = 128,
+#: 256, 512 carry 24, 32, 40 nodes in C(nu) eps_y and the top octaves 72 (measured per octave:
+#: each block's worst error <= ~5e-10); W* is stored on its own plain-eps_y grid (n_eps_y_energy).
+DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=72,
                     nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=6, bits_per_octave=3,
-                    fine_bits_per_octave=4, fine_v1_star_max=8.0, c_eps_y_map_rate=30.0)
+                    fine_bits_per_octave=4, fine_v1_star_max=8.0, c_eps_y_map_rate=30.0,
+                    eps_y_blocks=[[128.0, 24], [256.0, 32], [512.0, 40]], n_eps_y_energy=32)
 
 
 def default_table_path():
@@ -92,15 +96,16 @@ def normalise_grid(grid=None, **overrides):
     unknown = set(g) - set(DEFAULT_GRID)
     if unknown:
         raise ValueError(f"unknown grid parameter(s) {sorted(unknown)}; valid: {sorted(DEFAULT_GRID)}")
-    for k in ("n_eps_y", "n_nu"):
+    for k in ("n_eps_y", "n_nu", "n_eps_y_energy"):
         g[k] = int(g[k])
-    for k, m in (("n_eps_y", STENCIL_EPS), ("n_nu", STENCIL_NU)):
+    for k, m in (("n_eps_y", STENCIL_EPS), ("n_nu", STENCIL_NU), ("n_eps_y_energy", 2)):
         if g[k] < m:
             raise ValueError(f"{k} must be >= {m} (the interpolation stencil's size); got {g[k]}")
     for k in ("bits_per_octave", "fine_bits_per_octave"):
         g[k] = int(g[k])
         if not 1 <= g[k] <= 10:
             raise ValueError(f"{k} must be in [1, 10]; got {g[k]}")
+    g["eps_y_blocks"] = _normalise_blocks(g["eps_y_blocks"])
     g["fine_v1_star_max"] = float(g["fine_v1_star_max"])
     m, _ = math.frexp(g["fine_v1_star_max"])
     if not (m == 0.5 and 1.0 <= g["fine_v1_star_max"] <= 2.0**20):
@@ -119,6 +124,23 @@ def normalise_grid(grid=None, **overrides):
     if not g["nu_max"] > g["nu_min"]:
         raise ValueError("nu_max must be > nu_min")
     return g
+
+
+def _normalise_blocks(blocks):
+    """eps_y_blocks: [[V1*_end, n], ...]: cells ending at or below V1*_end (a power of two,
+    increasing) use n nodes in the mapped C(nu) eps_y (>= the stencil's 6); the rest n_eps_y."""
+    out = []
+    try:
+        pairs = [(float(v), int(n)) for v, n in (blocks or [])]
+    except (TypeError, ValueError):
+        raise ValueError(f"eps_y_blocks must be a list of [V1*_end, n_eps_y] pairs; got {blocks!r}") from None
+    for v, n in pairs:
+        if not (math.frexp(v)[0] == 0.5 and 2.0 <= v <= 2.0**20) or (out and v <= out[-1][0]):
+            raise ValueError(f"eps_y_blocks: each V1*_end must be a power of two in [2, 2^20], increasing; got {v}")
+        if n < STENCIL_EPS:
+            raise ValueError(f"eps_y_blocks: n_eps_y must be >= {STENCIL_EPS} (the stencil); got {n}")
+        out.append([v, n])
+    return out
 
 
 # --- generation -------------------------------------------------------------------------------
@@ -194,6 +216,20 @@ def grid_axes(g):
     return s, eps, nus, v_top, layout, omega
 
 
+def eps_y_blocks(g, edges):
+    """The non-empty blocks of cells with their own C(nu) eps_y axis: list of dicts
+    (cell0, cell1: cell range; n: nodes; c_eps_y: the axis; eps_y: (n, n_nu) eps_y of each node)."""
+    nus = np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
+    out, c0 = [], 0
+    for v_end, n in g["eps_y_blocks"] + [[math.inf, g["n_eps_y"]]]:
+        c1 = int(np.searchsorted(edges[:, 1], v_end, side="right"))
+        if c1 > c0:
+            s = s_of_xi(np.linspace(*xi_range(g), n), g["c_eps_y_map_rate"])
+            out.append(dict(cell0=c0, cell1=c1, n=n, c_eps_y=s, eps_y=s[:, None] / yield_parameter(1.0, nus)[None, :]))
+            c0 = c1
+    return out
+
+
 def cell_layout(g, v_top):
     """The V1* cells over (1.9^1.25, v_top]: 2^fine_bits_per_octave per octave below
     fine_v1_star_max (where 1 - e^2 is small and curved, just above the kink at w* = 1.9), then
@@ -206,46 +242,52 @@ def cell_layout(g, v_top):
 def generate(grid=None, progress=None):
     """Compute a table's arrays (no I/O). ``progress``: None = bar if a terminal, False = none."""
     g = normalise_grid(grid)
-    s, eps, nus, v_top, layout, omega = grid_axes(g)
+    _, _, nus, v_top, layout, omega = grid_axes(g)
     edges = layout["edges"]
-    eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y"])  # W* grid: plain eps_y
+    eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y_energy"])  # W* grid: plain eps_y
     nodes = chebyshev_nodes(edges)
-    flat = nodes.ravel()
-    vals = np.empty((len(QUANTITIES), s.size, nus.size, flat.size))
-    w_star = np.empty((s.size, nus.size, omega.size))
-    rows = range(s.size)
+    blocks = eps_y_blocks(g, edges)
+    jobs = [(b, i) for b in blocks for i in range(b["n"])] + [(None, i) for i in range(eps_w.size)]
     if progress is not False:
         try:
             from tqdm import tqdm
-            rows = tqdm(rows, desc="fastrest build", unit="eps_y row", disable=None)
+            jobs = tqdm(jobs, desc="fastrest build", unit="eps_y row", disable=None)
         except ImportError:
             pass
-    for i in rows:
+    for b in blocks:
+        b["values"] = np.empty((len(QUANTITIES), b["n"], nus.size, b["cell1"] - b["cell0"], DEGREE + 1))
+    w_star = np.empty((eps_w.size, nus.size, omega.size))
+    for b, i in jobs:
+        if b is None:  # W* = 1 - F at eps_w[i]
+            _generate_row(np.full(nus.size, eps_w[i]), nus, nodes[:0].ravel(), omega,
+                          np.empty((len(QUANTITIES), nus.size, 0)), w_star[i])
+            continue
+        flat = nodes[b["cell0"]:b["cell1"]].ravel()
         out = np.empty((len(QUANTITIES), nus.size, flat.size))
-        _generate_row(eps[i], nus, flat, omega, out, np.empty((nus.size, omega.size)))
-        vals[:, i] = out
-        _generate_row(np.full(nus.size, eps_w[i]), nus, flat[:0], omega, out[:, :, :0], w_star[i])
+        _generate_row(b["eps_y"][i], nus, flat, omega[:0], out, np.empty((nus.size, 0)))
+        b["values"][:, i] = out.reshape(out.shape[:2] + (-1, DEGREE + 1))
     v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
-    return dict(grid=g, c_eps_y=s, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=layout["base_fine"],
-                base=layout["base"], edges=edges, nodes=nodes,
-                omega_star=omega, W_star=w_star, v1_star_max=v_max,
-                values=vals.reshape(vals.shape[:3] + nodes.shape))
+    return dict(grid=g, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=layout["base_fine"],
+                base=layout["base"], edges=edges, nodes=nodes, blocks=blocks,
+                omega_star=omega, W_star=w_star, v1_star_max=v_max)
 
 
 # --- evaluation -------------------------------------------------------------------------------
 
-TableData = namedtuple("TableData", ["s_rate", "xi0", "inv_h_xi", "n_s", "nu0", "inv_h_nu", "n_nu",
+TableData = namedtuple("TableData", ["s_rate", "xi0", "nu0", "inv_h_nu", "n_nu",
                                      "eps_lo", "eps_hi", "nu_lo", "nu_hi", "v_split", "shift_fine",
-                                     "base_fine", "shift", "base", "v_top", "v_safe", "cells", "coef",
-                                     "hertz"])
+                                     "base_fine", "shift", "base", "v_top", "v_safe", "cells",
+                                     "cell_block", "block_inv_h", "block_n", "block_cell0",
+                                     "block_offset", "block_qstride", "coef", "hertz"])
 TableData.__doc__ = """Numba-friendly data of a :class:`Table` (see :mod:`fastrest.jit`).
 
 eps_y enters through s = C(nu) eps_y and xi = expm1(s_rate s)/s_rate, uniform from xi0 with
-spacing 1/inv_h_xi.
+spacing 1/block_inv_h[b] over block_n[b] nodes in block b of cells.
 cells: (ncell, 2) [center, 1/half_width] of each V1* cell (row of V1*:
 :func:`fastrest.interpolation.two_level_index` with v_split, shift_fine, base_fine, shift, base);
-coef: (5, ncell, n_eps, n_nu, 6) polynomial coefficients of omega_m_star, e_jcg, loss_jcg, e_etsion,
-loss_etsion; v_safe: below this V1* every material of the table has w_m* <= 425; hertz: (5 *
+cell_block: the block of each cell; coef: 1-D, for each block b from block_offset[b] a C-order
+(5, cells of b, block_n[b], n_nu, 6) array (block_qstride[b] per quantity) of the polynomial
+coefficients of omega_m_star, e_jcg, loss_jcg, e_etsion, loss_etsion; v_safe: below this V1* every material of the table has w_m* <= 425; hertz: (5 *
 N_HERTZ, 8) rows of the material-independent Hertz-range closed forms (see :mod:`fastrest.curve`).
 """
 
@@ -318,12 +360,16 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     u = (v - tab.cells[cell, 0]) * tab.cells[cell, 1]
     s = 1.295 * math.exp(0.736 * nu) * eps_y
     xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
-    i, we = _lagrange6(xi, tab.xi0, tab.inv_h_xi, tab.n_s)
+    b = tab.cell_block[cell]
+    n = tab.block_n[b]
+    i, we = _lagrange6(xi, tab.xi0, tab.block_inv_h[b], n)
     j, wn = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    row = 6 * tab.n_nu  # one eps_y node's coefficients
+    first = tab.block_offset[b] + ((cell - tab.block_cell0[b]) * n + i) * row + 6 * j
     if check_limit and v > tab.v_safe and q != 0:
-        if not _stencil_sum(tab.coef, 0, cell, i, j, u, we, wn) <= OMEGA_LIMIT:
+        if not _stencil_sum(tab.coef, first, row, u, we, wn) <= OMEGA_LIMIT:
             return np.nan
-    r = _stencil_sum(tab.coef, q, cell, i, j, u, we, wn)
+    r = _stencil_sum(tab.coef, first + q * tab.block_qstride[b], row, u, we, wn)
     if check_limit and q == 0 and not r <= OMEGA_LIMIT:
         return np.nan
     return r
@@ -337,23 +383,24 @@ def _interpolant_array(tab, q, v, eps_y, nu, out):
 
 
 @nb.njit(cache=True, inline="always")
-def _stencil_sum(coef, q, cell, i, j, u, we, wn):
+def _stencil_sum(coef, first, row, u, we, wn):
     """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one polynomial (Estrin).
 
-    The sums stay plain multiply-adds: fused ones lengthen their dependency chains (measured ~10 %
-    slower); the final polynomial uses fma.
+    ``first``: index in the flat ``coef`` of the stencil's first node; ``row``: stride of one eps_y
+    node. The sums stay plain multiply-adds (fused ones lengthen their dependency chains: measured
+    ~10 % slower); the final polynomial uses fma.
     """
     c0 = c1 = c2 = c3 = c4 = c5 = 0.0
     for a in range(STENCIL_EPS):
         for b in range(STENCIL_NU):
             w = we[a] * wn[b]
-            c = coef[q, cell, i + a, j + b]
-            c0 += w * c[0]
-            c1 += w * c[1]
-            c2 += w * c[2]
-            c3 += w * c[3]
-            c4 += w * c[4]
-            c5 += w * c[5]
+            k = np.uint64(first + a * row + 6 * b)
+            c0 += w * coef[k]
+            c1 += w * coef[k + np.uint64(1)]
+            c2 += w * coef[k + np.uint64(2)]
+            c3 += w * coef[k + np.uint64(3)]
+            c4 += w * coef[k + np.uint64(4)]
+            c5 += w * coef[k + np.uint64(5)]
     u2 = u * u
     return fma(u2 * u2, fma(u, c5, c4), fma(u2, fma(u, c3, c2), fma(u, c1, c0)))
 
@@ -409,18 +456,25 @@ class Table:
         eps, nus, edges = gen["eps_y"], gen["nu"], gen["edges"]
         center = 0.5 * (edges[:, 0] + edges[:, 1])
         half = 0.5 * (edges[:, 1] - edges[:, 0])
-        coef = values_to_coeffs(gen["values"])  # (5, n_eps, n_nu, ncell, 6)
-        coef = np.ascontiguousarray(coef.transpose(0, 3, 1, 2, 4))
         xi0, xi1 = xi_range(g)
+        blocks = gen["blocks"]
+        # per block (5, n_eps, n_nu, ncell, 6) -> (5, ncell, n_eps, n_nu, 6), flattened one after another
+        parts = [np.ascontiguousarray(values_to_coeffs(b["values"]).transpose(0, 3, 1, 2, 4)).ravel()
+                 for b in blocks]
+        cell_block = np.empty(edges.shape[0], dtype=np.int64)
+        for k, b in enumerate(blocks):
+            cell_block[b["cell0"]:b["cell1"]] = k
+        i64 = lambda x: np.array(x, dtype=np.int64)  # noqa: E731
         self.data = TableData(
-            g["c_eps_y_map_rate"], float(xi0), float((gen["c_eps_y"].size - 1) / (xi1 - xi0)),
-            int(gen["c_eps_y"].size),
+            g["c_eps_y_map_rate"], float(xi0),
             float(nus[0]), float((nus.size - 1) / (nus[-1] - nus[0])), int(nus.size),
             float(eps[0]), float(eps[-1]), float(nus[0]), float(nus[-1]),
             g["fine_v1_star_max"], MANTISSA_BITS - g["fine_bits_per_octave"], int(gen["base_fine"]),
             MANTISSA_BITS - g["bits_per_octave"], int(gen["base"]), float(gen["v_top"]),
             float(np.min(gen["v1_star_max"])), np.ascontiguousarray(np.stack([center, 1.0 / half], 1)),
-            coef, _hertz_table_rows())
+            cell_block, np.array([(b["n"] - 1) / (xi1 - xi0) for b in blocks]), i64([b["n"] for b in blocks]),
+            i64([b["cell0"] for b in blocks]), i64(np.cumsum([0] + [p.size for p in parts[:-1]])),
+            i64([p.size // len(QUANTITIES) for p in parts]), np.concatenate(parts), _hertz_table_rows())
         self.grid = g
         self.gen = gen
         self._entry = None
@@ -562,7 +616,6 @@ def write(gen, path, errors=None):
     ncell = gen["edges"].shape[0]
     axes = {
         "eps_y": (gen["eps_y"], "1", "yield strain Sy/E' (JGM eq 11)"),
-        "c_eps_y": (gen["c_eps_y"], "1", "C(nu) eps_y (JGM eqs 5, 11): restitution grid axis"),
         "nu": (gen["nu"], "1", "Poisson's ratio of the yielding material"),
         "cell": (gen["edges"][:, 0], "1", "V1* = V1/V_c at the start of each interpolation cell"),
         "node": (CHEB_U, "1", "Chebyshev point of the cell, in [-1, 1] across the cell"),
@@ -575,16 +628,21 @@ def write(gen, path, errors=None):
         "cell_end": (gen["edges"][:, 1], ("cell",), "1", "V1* at the end of each cell"),
         "v1_star_nodes": (gen["nodes"], ("cell", "node"), "1", "V1* of each tabulated point"),
     }
-    for q, name in enumerate(QUANTITIES):
-        units, long_name = QUANTITY_META[name]
-        datasets[name] = (gen["values"][q], ("c_eps_y", "nu", "cell", "node"), units, long_name)
+    for k, b in enumerate(gen["blocks"]):
+        axes[f"c_eps_y_{k}"] = (b["c_eps_y"], "1", f"C(nu) eps_y (JGM eqs 5, 11): grid axis of block {k} of cells")
+        axes[f"cell_{k}"] = (gen["edges"][b["cell0"]:b["cell1"], 0], "1", f"V1* at the start of each cell of block {k}")
+        for q, name in enumerate(QUANTITIES):
+            units, long_name = QUANTITY_META[name]
+            datasets[f"{name}_{k}"] = (b["values"][q], (f"c_eps_y_{k}", "nu", f"cell_{k}", "node"), units,
+                                       f"{long_name}; block {k} of cells")
     attrs = dict(MODEL_ATTRS)
     attrs.update({
         "grid": g,
         "cells": {"bits_per_octave": g["bits_per_octave"], "fine_bits_per_octave": g["fine_bits_per_octave"],
                   "fine_v1_star_max": g["fine_v1_star_max"], "degree": DEGREE, "count": ncell,
                   "first_key_fine": int(gen["base_fine"]), "first_key": int(gen["base"]),
-                  "v1_star_top": float(gen["v_top"])},
+                  "v1_star_top": float(gen["v_top"]),
+                  "blocks": [[b["cell0"], b["cell1"], b["n"]] for b in gen["blocks"]]},
         "quadrature": {"rule": "composite Gauss-Legendre in ln w", "order": GL_ORDER,
                        "panel_width_ln_w": PANEL_WIDTH, "newton_step_tolerance_ln_w": 1e-9},
         "validated_range": {"eps_y": list(EPS_Y_VALIDATED), "nu": list(NU_VALIDATED),
@@ -626,10 +684,14 @@ def read(path):
         g = normalise_grid(a["grid"])
         cells = a["cells"]
         ds = td.datasets
-        gen = dict(grid=g, c_eps_y=td.axes["c_eps_y"], eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=cells["v1_star_top"],
-                   base_fine=cells["first_key_fine"], base=cells["first_key"], edges=np.stack([td.axes["cell"], ds["cell_end"]], 1),
-                   nodes=ds["v1_star_nodes"], omega_star=td.axes["omega_star"], W_star=ds["W_star"],
-                   v1_star_max=ds["v1_star_max"], values=np.stack([ds[q] for q in QUANTITIES]))
+        blocks = [dict(cell0=int(c0), cell1=int(c1), n=int(n), c_eps_y=td.axes[f"c_eps_y_{k}"],
+                       values=np.stack([ds[f"{q}_{k}"] for q in QUANTITIES]))
+                  for k, (c0, c1, n) in enumerate(cells["blocks"])]
+        gen = dict(grid=g, eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=cells["v1_star_top"],
+                   base_fine=cells["first_key_fine"], base=cells["first_key"],
+                   edges=np.stack([td.axes["cell"], ds["cell_end"]], 1), nodes=ds["v1_star_nodes"],
+                   blocks=blocks, omega_star=td.axes["omega_star"], W_star=ds["W_star"],
+                   v1_star_max=ds["v1_star_max"])
         if cells["degree"] != DEGREE or not np.array_equal(td.axes["node"], CHEB_U):
             raise ValueError("cell polynomial degree or nodes differ from this fastrest's")
         _check_axes_match_grid(gen)
@@ -642,11 +704,14 @@ def _check_axes_match_grid(gen):
     """The checksum covers the arrays; this ties the grid attributes to them."""
     g = gen["grid"]
     nus = np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
-    s = s_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
-    eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y"])
+    eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y_energy"])
     layout = cell_layout(g, gen["v_top"])
-    for name, want, got in (("nu", nus, gen["nu"]), ("c_eps_y", s, gen["c_eps_y"]),
-                            ("eps_y", eps_w, gen["eps_y"]), ("cell", layout["edges"], gen["edges"])):
+    blocks = eps_y_blocks(g, layout["edges"])
+    if [(b["cell0"], b["cell1"], b["n"]) for b in blocks] != [(b["cell0"], b["cell1"], b["n"]) for b in gen["blocks"]]:
+        raise ValueError("blocks of cells do not match the grid attributes")
+    checks = [("nu", nus, gen["nu"]), ("eps_y", eps_w, gen["eps_y"]), ("cell", layout["edges"], gen["edges"])]
+    checks += [(f"c_eps_y_{k}", b["c_eps_y"], got["c_eps_y"]) for k, (b, got) in enumerate(zip(blocks, gen["blocks"]))]
+    for name, want, got in checks:
         if want.shape != got.shape or not np.allclose(want, got, rtol=1e-12, atol=0):
             raise ValueError(f"axis {name!r} does not match the grid attributes")
     if layout["base"] != gen["base"] or layout["base_fine"] != gen["base_fine"]:

@@ -151,7 +151,7 @@ def test_info_invalid_files_exit_1(capsys, tmp_path):
     src = tables.default_table_path()
     corrupt.write_bytes(src.read_bytes())
     with h5py.File(corrupt, "r") as f:
-        off = f["e_etsion"].id.get_offset()
+        off = f["e_etsion_0"].id.get_offset()
     with open(corrupt, "r+b") as fh:
         fh.seek(off + 100)
         b = fh.read(1)
@@ -166,12 +166,13 @@ def test_info_invalid_files_exit_1(capsys, tmp_path):
 def test_build_small_grid(capsys, tmp_path):
     out_path = tmp_path / "sub" / "t.h5"
     code, out, err = run(["build", "--out", str(out_path), "--n-eps-y", "6", "--n-nu", "6",
-                          "--no-progress"], capsys)
+                          "--eps-y-blocks", "16:6", "--n-eps-y-energy", "4", "--no-progress"], capsys)
     assert code == 0, err
     assert out_path.exists()
     assert "wrote" in out and str(out_path) in out
     t = fastrest.load_table(out_path)
     assert t.grid["n_eps_y"] == 6 and t.grid["n_nu"] == 6
+    assert t.grid["eps_y_blocks"] == [[16.0, 6]] and t.grid["n_eps_y_energy"] == 4
     assert t.grid["eps_y_min"] == tables.DEFAULT_GRID["eps_y_min"]
     ref = fastrest.direct.e_star(5.0, 0.005, 0.33)
     assert t.e_star(5.0, 0.005, 0.33) == pytest.approx(ref, rel=1e-3)

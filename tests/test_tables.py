@@ -45,9 +45,9 @@ SEED = 424242
 
 # A small grid for the file tests (builds in well under a second).
 SMALL_GRID = dict(eps_y_min=0.002, eps_y_max=0.008, n_eps_y=8, nu_min=0.25, nu_max=0.4, n_nu=6,
-                  bits_per_octave=2)
+                  bits_per_octave=2, eps_y_blocks=[[16.0, 6]], n_eps_y_energy=8)
 TINY_GRID = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
-                 bits_per_octave=1)
+                 bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6)
 
 
 def subprocess_env():
@@ -295,7 +295,10 @@ def test_shipped_default_table_matches_generator(tmp_path):
     assert a.attrs["format_version"] == _hdf5.FORMAT_VERSION
     # the table read through the package equals the generator's arrays too
     t = tables.read(shipped)
-    np.testing.assert_allclose(t.gen["values"], gen["values"], rtol=1e-13, atol=0)
+    assert len(t.gen["blocks"]) == len(gen["blocks"]) > 1
+    for bt, bg in zip(t.gen["blocks"], gen["blocks"]):
+        np.testing.assert_allclose(bt["values"], bg["values"], rtol=1e-13, atol=0)
+        np.testing.assert_array_equal(bt["c_eps_y"], bg["c_eps_y"])
 
 
 def test_default_table_metadata():
@@ -332,9 +335,11 @@ def test_build_read_round_trip(small):
             np.testing.assert_array_equal(x, y, err_msg=name)
         else:
             assert x == y and type(x) is type(y), name
-    for k in ("c_eps_y", "eps_y", "nu", "edges", "nodes", "omega_star", "W_star", "v1_star_max",
-              "values"):
+    for k in ("eps_y", "nu", "edges", "nodes", "omega_star", "W_star", "v1_star_max"):
         np.testing.assert_array_equal(built.gen[k], got.gen[k], err_msg=k)
+    for bb, bg in zip(built.gen["blocks"], got.gen["blocks"], strict=True):
+        for k in ("cell0", "cell1", "n", "c_eps_y", "values"):
+            np.testing.assert_array_equal(bb[k], bg[k], err_msg=k)
     v = np.array([1.5, 3.0, 30.0, 300.0])
     np.testing.assert_array_equal(got.e_star(v, 0.005, 0.3), built.e_star(v, 0.005, 0.3))
 
@@ -388,7 +393,7 @@ def assert_rejected(path):
     return str(exc.value)
 
 
-@pytest.mark.parametrize("dataset", ["e_jcg", "W_star", "nu"])
+@pytest.mark.parametrize("dataset", ["e_jcg_0", "W_star", "nu"])
 def test_corrupted_dataset_rejected(small, tmp_path, dataset):
     path, _ = small
     bad = copy_of(path, tmp_path, f"corrupt-{dataset}.h5")
@@ -626,3 +631,27 @@ def test_scalar_fast_path_matches_array_path_and_still_checks():
                        ((1e5, 0.005, 0.33), "425"), ((5.0, 0.02, 0.33), "eps_y"), ((5.0, 0.005, 0.49), "nu")):
         with pytest.raises(ValueError, match=word):
             fastrest.e_star(*args)
+
+
+@pytest.mark.parametrize("blocks", [[[16.0, 6]], [[8.0, 6], [64.0, 7]], []])
+def test_blocks_of_cells_agree_with_direct_solver(blocks):
+    """Tables whose cell blocks carry different eps_y axes interpolate each block on its own axis:
+    every block agrees with the direct solver (to the small grid's accuracy), across block edges."""
+    t = tables.Table(tables.generate(dict(SMALL_GRID, eps_y_blocks=blocks), progress=False))
+    assert len(t.gen["blocks"]) == len(blocks) + 1 or not blocks
+    rng = np.random.default_rng(SEED + 11)
+    e = rng.uniform(0.0025, 0.0075, 400)
+    n = rng.uniform(0.26, 0.39, 400)
+    v = np.concatenate([np.exp(rng.uniform(np.log(2.3), np.log(300.0), 394)),
+                        [8.0, math.nextafter(8.0, 0.0), 16.0, math.nextafter(16.0, 0.0), 64.0, 63.9]])
+    ref = reference(v, e, n)
+    for q in ("omega_m_star", "e_jcg"):
+        got = getattr(t, "omega_m_star" if q == "omega_m_star" else "e_star")(v, e, n)
+        assert rel_errors(got, ref[q]).max() < 1e-5, q
+
+
+def test_bad_eps_y_blocks_rejected():
+    for blocks, word in (([[100.0, 8]], "power of two"), ([[16.0, 8], [8.0, 8]], "increasing"),
+                         ([[16.0, 3]], ">= 6"), ("x", "pairs")):
+        with pytest.raises(ValueError, match=word):
+            tables.normalise_grid(eps_y_blocks=blocks)
