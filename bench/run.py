@@ -12,9 +12,11 @@ REPO = Path(__file__).resolve().parent.parent
 FULL = dict(
     n_materials=16, n_time=1_000_000, per_err=1500, n_direct=4000, n_mp=24, rounds_plot=21,
     curve_bits=[2, 3, 4, 5, 6],
-    table_grids=[dict(n_eps_y=12, n_nu=6, bits_per_octave=2), dict(n_eps_y=20, n_nu=6, bits_per_octave=2),
-                 dict(n_eps_y=28, n_nu=6, bits_per_octave=3), dict(n_eps_y=40, n_nu=6, bits_per_octave=3),
-                 dict(n_eps_y=80, n_nu=8, bits_per_octave=4)],
+    # uniform grids (one eps_y axis for all cells) against the default's blocks of cells
+    table_grids=[dict(n_eps_y=20, n_nu=6, bits_per_octave=2, fine_bits_per_octave=2, eps_y_blocks=[]),
+                 dict(n_eps_y=40, n_nu=6, bits_per_octave=3, fine_bits_per_octave=3, eps_y_blocks=[]),
+                 dict(n_eps_y=40, n_nu=6, eps_y_blocks=[]), dict(n_eps_y=72, n_nu=6, eps_y_blocks=[]),
+                 dict(n_eps_y=48, n_nu=6, eps_y_blocks=[[128.0, 16], [256.0, 24], [512.0, 32]])],
     batch_sizes=[10**3, 10**4, 10**5, 10**6, 10**7], thread_sizes=[10**6, 10**7], rounds=21,
     scalar_block=0.02, njit_n=10**6, mm_n=10**6, build_repeats=3, curve_repeats=15, curve_err_n=3000,
     fresh_warm=5, fresh_cold=2, memory_batch_n=10**7,
@@ -22,7 +24,8 @@ FULL = dict(
 QUICK = dict(
     n_materials=6, n_time=120_000, per_err=300, n_direct=600, n_mp=3, rounds_plot=5,
     curve_bits=[2, 3, 4, 5, 6],
-    table_grids=[dict(n_eps_y=12, n_nu=6, bits_per_octave=2), dict(n_eps_y=28, n_nu=6, bits_per_octave=3)],
+    table_grids=[dict(n_eps_y=20, n_nu=6, bits_per_octave=2, fine_bits_per_octave=2, eps_y_blocks=[]),
+                 dict(n_eps_y=40, n_nu=6, eps_y_blocks=[])],
     batch_sizes=[10**3, 10**4, 10**5, 10**6], thread_sizes=[10**6], rounds=5,
     scalar_block=0.005, njit_n=2 * 10**5, mm_n=2 * 10**5, build_repeats=1, curve_repeats=5, curve_err_n=500,
     fresh_warm=1, fresh_cold=1, memory_batch_n=10**6,

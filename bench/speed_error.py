@@ -31,7 +31,10 @@ FLOOR = {"loss_etsion": 1e-3}
 
 
 def grid_label(g):
-    return f"{g['n_eps_y']}x{g['n_nu']}, K={g['bits_per_octave']}"
+    g = tables.normalise_grid(g)
+    k = f"K={g['bits_per_octave']}" + (f"/{g['fine_bits_per_octave']}" if g["fine_bits_per_octave"] != g["bits_per_octave"] else "")
+    n = "/".join(str(n) for _, n in g["eps_y_blocks"]) + ("/" if g["eps_y_blocks"] else "") + str(g["n_eps_y"])
+    return f"{n}x{g['n_nu']}, {k}"
 
 
 def curve_errors(curves, ps, ref):
