@@ -216,7 +216,7 @@ def results_md(R):
     a("")
     a("## How the numbers were taken\n")
     a("This machine alternates between a fast and a slow state about 1.85x apart every 0.5-2 s "
-      "(`/work/shared/PERF-NOTES.md`). So every kernel is compiled and called once before timing "
+      "(measured before the project started). So every kernel is compiled and called once before timing "
       "(warm-up excluded); then the methods of one comparison run in interleaved rounds (order shuffled "
       "each round, each method a block of >= 2 ms), and each time is the **median** over rounds with "
       "the **minimum** beside it. Every time is also given as a ratio to JGM's closed-form fit (43)-(44) "

@@ -4,8 +4,11 @@ Data flow: :mod:`~fastrest.materials` (material -> critical values, eqs 4-7, 23-
 :mod:`~fastrest.contact` (normalised JG law, eqs 8-15) -> :mod:`~fastrest.energy` (W*, w_m*,
 eqs 22-31) -> :mod:`~fastrest.unloading` (eqs 32-38) -> :mod:`~fastrest.direct` (exact solver) ->
 :mod:`~fastrest.curve` and :mod:`~fastrest.tables` (fast paths) -> :mod:`~fastrest.jit` (inside
-your own Numba code). Comparison models: :mod:`~fastrest.models`.
+your own Numba code). Comparison models: :mod:`~fastrest.models`; rough surfaces:
+:mod:`~fastrest.rough`; the paper's figures: :mod:`~fastrest.figures`.
 """
+import importlib
+
 from ._version import __version__
 from ._validation import ValidityWarning, ExtrapolationWarning
 from .materials import Material, Impact, poisson_factor, critical_velocity_ratios
@@ -20,3 +23,18 @@ __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material",
            "poisson_factor", "critical_velocity_ratios", "P_star", "A_star", "W_star",
            "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
            "omega_m_star", "e_star", "loss_star", "TableFileError"]
+
+# Submodules not needed by the core API load on first attribute access (fastrest.models, ...),
+# keeping `import fastrest` fast.
+_LAZY = ("models", "rough", "figures", "forward", "jit", "tables", "curve", "cli", "unloading", "energy",
+         "contact", "materials", "interpolation")
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'fastrest' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -25,13 +25,45 @@ class ExtrapolationWarning(ValidityWarning):
     """A result was extrapolated past w_m* = 425 at the caller's request (``extrapolate=True``)."""
 
 
+_NOT_REAL = (str, bytes, bool, np.bool_)
+
+
+def _type_error(name, x):
+    return TypeError(f"{name} must be a real number or array of real numbers, got {x!r} "
+                     f"({type(x).__name__})")
+
+
 def as_float_array(x, name):
-    """Return ``x`` as a float64 ndarray, raising ValueError that names ``name`` if it is not numeric."""
+    """Return ``x`` as a float64 ndarray.
+
+    Raises TypeError naming ``name`` for anything that is not real-valued: strings (NumPy would
+    parse ``"5"``), booleans, None (NumPy would make it NaN), complex numbers, datetimes.
+    """
+    if x is None or isinstance(x, _NOT_REAL):
+        raise _type_error(name, x)
     try:
-        a = np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a real number or array of real numbers, got {x!r}") from exc
-    return a
+        a = np.asarray(x)
+    except (TypeError, ValueError) as exc:  # e.g. ragged nested lists
+        raise _type_error(name, x) from exc
+    kind = a.dtype.kind
+    if kind == "O":
+        if any(el is None or isinstance(el, _NOT_REAL) for el in a.flat):
+            raise _type_error(name, x)
+        try:
+            return a.astype(np.float64)
+        except (TypeError, ValueError) as exc:
+            raise _type_error(name, x) from exc
+    if kind not in "iuf":
+        raise _type_error(name, x)
+    return a if a.dtype == np.float64 else a.astype(np.float64)
+
+
+def real_scalar(x, name):
+    """``x`` as a Python float; TypeError naming ``name`` unless it is one real number."""
+    a = as_float_array(x, name)
+    if a.ndim != 0:
+        raise TypeError(f"{name} must be a single real number, got an array of shape {a.shape}")
+    return float(a)
 
 
 def check_finite_positive(x, name, unit):

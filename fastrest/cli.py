@@ -30,29 +30,43 @@ def _model_names(values):
 def _cmd_e(args):
     from . import direct
     from . import models
+    from ._validation import ValidityWarning
     from .materials import Impact, Material
 
     names = _model_names(args.models)
+    if args.rho is None and args.mass is None:
+        raise ValueError("give --rho (sphere density, kg/m^3) or --mass (kg of the moving body)")
+    if args.flat_E is None and (args.flat_nu is not None or args.flat_Sy is not None):
+        raise ValueError("--flat-nu and --flat-Sy need --flat-E (without it the flat is rigid)")
     sphere = Material(args.E, args.nu, args.Sy, rho=args.rho)
     flat = None
     if args.flat_E is not None:
+        if args.flat_nu is None:
+            raise ValueError("--flat-E needs --flat-nu (the flat's Poisson's ratio)")
         flat = Material(args.flat_E, args.flat_nu, args.flat_Sy if args.flat_Sy is not None else math.inf)
     imp = Impact(sphere, args.R, flat=flat, mass=args.mass)
     crit = imp.critical_values()
     V = np.asarray(args.V, dtype=float)
-    v1 = V / imp.V_c
+    try:
+        v1 = imp.v1_star(V, args.extrapolate)
+    except ValueError as exc:
+        raise ValueError(f"--V: {exc}") from None
     with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+        # record the model's own warnings (validity, extrapolation) for the output; others pass through
+        warnings.simplefilter("always", ValidityWarning)
         jcg = direct.solve(v1, imp.eps_y, imp.nu, "jcg", extrapolate=args.extrapolate)
         ets = direct.solve(v1, imp.eps_y, imp.nu, "etsion", extrapolate=args.extrapolate)
         others = {n: np.atleast_1d(models.evaluate(n, imp, V)) for n in names}
     rows = [{"V": float(a), "V1_star": float(b), "omega_m_star": float(c), "e_jcg": float(d),
-             "e_etsion": float(f), "V2_jcg": float(a * d)}
+             "e_etsion": float(f), "V2_jcg": float(a * d), "V2_etsion": float(a * f)}
             for a, b, c, d, f in zip(V, v1, jcg["omega_m_star"], jcg["e"], ets["e"])]
     for n, vals in others.items():
         for r, x in zip(rows, vals):
             r["e_" + n] = float(x)
-    notes = sorted({str(w.message) for w in caught})
+    notes = sorted({str(w.message) for w in caught if issubclass(w.category, ValidityWarning)})
+    for w in caught:
+        if not issubclass(w.category, ValidityWarning):
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     if args.json:
         out = {"critical": crit, "impacts": rows, "warnings": notes}
         if names:
@@ -60,7 +74,12 @@ def _cmd_e(args):
         json.dump(out, sys.stdout, indent=2)
         print()
         return 0
-    print("Jackson, Green & Marghitu (2010): sphere on " + ("rigid flat" if flat is None else "elastic-plastic flat"))
+    if flat is None:
+        print("Jackson, Green & Marghitu (2010): sphere on a rigid flat")
+    else:
+        kind = "an elastic flat (never yields)" if math.isinf(flat.Sy) else "an elastic-plastic flat"
+        who = "sphere" if imp.yielding is sphere else "flat"
+        print(f"Jackson, Green & Marghitu (2010): sphere on {kind}; the {who} yields first (smaller C(nu) Sy)")
     units = {"E_eff": "Pa", "R_eff": "m", "mass": "kg", "nu": "-", "Sy": "Pa", "C": "-", "eps_y": "-",
              "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": "J", "V_c": "m/s"}
     for k, val in crit.items():
@@ -98,7 +117,11 @@ def _cmd_build(args):
         if grid:
             print("fastrest build: --default takes no grid options", file=sys.stderr)
             return 2
-        out = args.out or "tables/default.h5"
+        out = args.out or tables.source_tree_table_path()
+        if out is None:
+            print("fastrest build: --default writes tables/default.h5 of a source checkout; this "
+                  "fastrest is installed without one, so give --out FILE", file=sys.stderr)
+            return 2
     else:
         out = args.out
     t0 = time.perf_counter()
@@ -170,20 +193,47 @@ def _cmd_figures(args):
     return 0
 
 
-def main(argv=None):
-    p = argparse.ArgumentParser(prog="fastrest", description=__doc__)
-    sub = p.add_subparsers(dest="cmd", required=True)
+_DESCRIPTION = """\
+The coefficient of restitution of an elastic-perfectly plastic sphere striking a flat
+(Jackson, Green & Marghitu 2010, doi:10.1007/s11071-009-9591-z). Run `fastrest COMMAND -h`
+for a command's options.
+"""
 
-    pe = sub.add_parser("e", help="coefficient of restitution of one sphere impact (SI units)")
+_GRID_HELP = {
+    "eps_y_min": "smallest eps_y = Sy/E' (-)",
+    "eps_y_max": "largest eps_y (-); past 0.01 add nodes (--n-eps-y, --eps-y-blocks) and check "
+                 "the measured error that build prints",
+    "n_eps_y": "nodes in C(nu) eps_y for V1* cells above the last --eps-y-blocks entry",
+    "nu_min": "smallest Poisson's ratio (-)",
+    "nu_max": "largest Poisson's ratio (-), < 0.5",
+    "n_nu": "nodes in nu (uniform)",
+    "bits_per_octave": "V1* cells per octave = 2^BITS above --fine-v1-star-max",
+    "c_eps_y_map_rate": "clustering of the eps_y nodes towards large C(nu) eps_y (0 = uniform)",
+    "fine_bits_per_octave": "V1* cells per octave = 2^BITS up to --fine-v1-star-max",
+    "fine_v1_star_max": "V1* (a power of two) where the finer cells end",
+    "n_eps_y_energy": "nodes in eps_y of the stored W*(w*) grid",
+}
+
+
+def main(argv=None):
+    from .tables import DEFAULT_GRID
+
+    p = argparse.ArgumentParser(prog="fastrest", description=_DESCRIPTION,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND", title="commands")
+
+    pe = sub.add_parser("e", help="e, w_m* and V2 of one sphere at given impact speeds (SI units, exact solver)",
+                        description="Critical values (JGM eqs 4-7, 23-28) and, per impact speed, V1* = V/V_c, "
+                                    "w_m* and e for both unloading models (exact solver).")
     pe.add_argument("--E", type=float, required=True, help="sphere Young's modulus (Pa)")
-    pe.add_argument("--nu", type=float, required=True, help="sphere Poisson's ratio")
+    pe.add_argument("--nu", type=float, required=True, help="sphere Poisson's ratio (-)")
     pe.add_argument("--Sy", type=float, required=True, help="sphere yield strength (Pa)")
     pe.add_argument("--R", type=float, required=True, help="sphere radius (m)")
-    pe.add_argument("--rho", type=float, help="sphere density (kg/m^3)")
-    pe.add_argument("--mass", type=float, help="mass of the moving body (kg); default from rho")
-    pe.add_argument("--flat-E", type=float, help="flat's Young's modulus (Pa); default: rigid flat")
-    pe.add_argument("--flat-nu", type=float, default=0.3, help="flat's Poisson's ratio")
-    pe.add_argument("--flat-Sy", type=float, help="flat's yield strength (Pa); default: never yields")
+    pe.add_argument("--rho", type=float, help="sphere density (kg/m^3); gives the mass (or give --mass)")
+    pe.add_argument("--mass", type=float, help="mass of the moving body (kg); default: from --rho")
+    pe.add_argument("--flat-E", type=float, help="flat's Young's modulus (Pa); without it the flat is rigid")
+    pe.add_argument("--flat-nu", type=float, help="flat's Poisson's ratio (-); required with --flat-E")
+    pe.add_argument("--flat-Sy", type=float, help="flat's yield strength (Pa); without it the flat never yields")
     pe.add_argument("--V", type=float, nargs="+", required=True, help="impact speeds (m/s)")
     pe.add_argument("--extrapolate", action="store_true", help="allow w_m* > 425 (up to a/R = 1)")
     pe.add_argument("--json", action="store_true", help="machine-readable output")
@@ -193,23 +243,28 @@ def main(argv=None):
                          "repeatable or comma-separated")
     pe.set_defaults(func=_cmd_e)
 
-    pb = sub.add_parser("build", help="build a multi-material table (HDF5)")
-    pb.add_argument("--out", help="output file (default: the user cache)")
-    pb.add_argument("--default", action="store_true", help="rebuild the shipped default table")
+    pb = sub.add_parser("build", help="build a multi-material table (HDF5)",
+                        description="Tabulate w_m*, e and 1 - e^2 (both unloading models) over eps_y, nu "
+                                    "and V1*. Defaults are the shipped table's grid.")
+    pb.add_argument("--out", help="output file (default: the user cache, $FASTREST_CACHE_DIR)")
+    pb.add_argument("--default", action="store_true",
+                    help="rebuild the shipped tables/default.h5 of this source checkout")
     for k, typ in (("eps_y_min", float), ("eps_y_max", float), ("n_eps_y", int), ("nu_min", float),
-                   ("nu_max", float), ("n_nu", int), ("bits_per_octave", int), ("c_eps_y_map_rate", float)):
-        pb.add_argument("--" + k.replace("_", "-"), dest=k, type=typ)
-    for k, typ in (("fine_bits_per_octave", int), ("fine_v1_star_max", float), ("n_eps_y_energy", int)):
-        pb.add_argument("--" + k.replace("_", "-"), dest=k, type=typ)
+                   ("nu_max", float), ("n_nu", int), ("bits_per_octave", int), ("c_eps_y_map_rate", float),
+                   ("fine_bits_per_octave", int), ("fine_v1_star_max", float), ("n_eps_y_energy", int)):
+        pb.add_argument("--" + k.replace("_", "-"), dest=k, type=typ, metavar="N" if k.startswith("n_") else
+                        "BITS" if "bits" in k else "X", help=f"{_GRID_HELP[k]} [default: {DEFAULT_GRID[k]:g}]")
+    blocks = ",".join(f"{v:g}:{n}" for v, n in DEFAULT_GRID["eps_y_blocks"])
     pb.add_argument("--eps-y-blocks", dest="eps_y_blocks", type=_parse_blocks, metavar="V:N,V:N",
-                    help="cells ending at or below V1* = V (a power of two) use N nodes in C(nu) eps_y, "
-                         "e.g. 128:24,256:32,512:40 (the default); 'none' for n_eps_y everywhere")
+                    help="cells ending at or below V1* = V (a power of two) use N nodes in C(nu) eps_y; "
+                         f"'none' for --n-eps-y everywhere [default: {blocks}]")
     pb.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     pb.set_defaults(func=_cmd_build)
 
-    pi = sub.add_parser("info", help="describe a table file; exit 1 if it is invalid")
-    pi.add_argument("file")
-    pi.add_argument("--json", action="store_true")
+    pi = sub.add_parser("info", help="describe a table file; exit 1 if it is invalid",
+                        description="Format, provenance, grid and measured error of a table file.")
+    pi.add_argument("file", help="table file (HDF5), e.g. tables/default.h5")
+    pi.add_argument("--json", action="store_true", help="all root attributes as JSON")
     pi.set_defaults(func=_cmd_info)
 
     pw = sub.add_parser("warmup", help="compile the Numba kernels into the cache")
@@ -217,13 +272,13 @@ def main(argv=None):
 
     pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)")
     pf.add_argument("--out", required=True, help="output directory (created if needed)")
-    pf.add_argument("--dpi", type=int, default=150, help="resolution (default 150)")
+    pf.add_argument("--dpi", type=int, default=150, help="resolution (default: 150)")
     pf.set_defaults(func=_cmd_figures)
 
     args = p.parse_args(argv)
     try:
         return args.func(args)
-    except ValueError as exc:
+    except (ValueError, TypeError) as exc:
         print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
         return 2
 

@@ -117,9 +117,11 @@ def _a_star_array(w, eps_y, nu, out):
 def broadcast_inputs(*named):
     """Broadcast (array, name) pairs to flat contiguous float64 arrays; return (flat arrays, shape)."""
     arrays = [as_float_array(a, n) for a, n in named]
-    b = np.broadcast_arrays(*arrays)
-    shape = b[0].shape
-    return [np.ascontiguousarray(x, dtype=np.float64).ravel() for x in b], shape
+    shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    # broadcast_to + copy, not broadcast_arrays: its views warn (FutureWarning) when Numba reads
+    # their writeable flag
+    return [np.ascontiguousarray(a).ravel() if a.shape == shape else np.broadcast_to(a, shape).copy().ravel()
+            for a in arrays], shape
 
 
 def shaped(out, shape):

@@ -197,7 +197,7 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     if v_max is None:
         v_max = limit
     elif v_max > limit:
-        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate)
+        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max")
     shift = MANTISSA_BITS - bits_per_octave
     hertz = hertz_rows(model)
     if v_max <= V_SWITCH:  # closed forms only
@@ -317,6 +317,27 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
     Returns
     -------
     Curve
+        ``.e(v)``, ``.omega_m(v)``, ``.loss(v)`` at V1* in [0, v_max] (broadcast; ValueError past
+        v_max), ``.v_max``, and ``.data`` for :mod:`fastrest.jit`. Accuracy against the direct
+        solver: ~1e-13 relative for e and w_m*, ~2e-12 for 1 - e^2 (README, bench/).
+
+    Raises
+    ------
+    TypeError
+        eps_y, nu or v_max is not a real number.
+    ValueError
+        eps_y <= 0, nu outside [0, 0.5), unknown ``unloading``, or v_max past the model's limit
+        (w_m* = 425, or a/R = 1 with ``extrapolate``); the message names the parameter and limit.
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated range (0.0005-0.01, 0.2-0.45).
+
+    Examples
+    --------
+    >>> c = fastrest.curve(0.005, 0.33, v_max=200.0)       # doctest: +SKIP
+    >>> c.e([2.0, 20.0, 200.0])                              # doctest: +SKIP
     """
     eps_y = float(check_eps_y(eps_y))
     nu = float(check_nu(nu))

@@ -85,17 +85,19 @@ def v1_star_limit(eps_y, nu, extrapolate=False):
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
 
 
-def raise_out_of_range(v, eps_y, nu, extrapolate):
-    """Raise the ValueError for the first impact whose w_m* is beyond the allowed range."""
+def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star"):
+    """Raise the ValueError for the first impact whose w_m* is beyond the allowed range.
+
+    ``name`` is the caller's parameter the speed came from (e.g. ``v_max``)."""
     v, e, n = float(v[0]), float(eps_y[0]), float(nu[0])
     w_ar = omega_star_limit_kernel(e, n)
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
         raise ValueError(
-            f"v1_star = {v!r} is past the end of the Jackson-Green law for eps_y = {e!r}, nu = {n!r}: "
+            f"{name} = {v!r} is past the end of the Jackson-Green law for eps_y = {e!r}, nu = {n!r}: "
             f"a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. V1* = {v1_star_limit(e, n, True):.10g} "
             "(eq 12 needs 0 < a/R < 1)")
     raise ValueError(
-        f"v1_star = {v!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
+        f"{name} = {v!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
         f"for eps_y = {e!r}, nu = {n!r} that limit is V1* = {v1_star_limit(e, n):.10g}. "
         "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas")
 

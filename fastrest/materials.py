@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ._validation import check_finite_positive, check_nu
+from ._validation import check_finite_positive, check_nu, real_scalar
 
 
 def poisson_factor(nu):
@@ -131,10 +131,12 @@ class Material:
     rho: float | None = None
 
     def __post_init__(self):
+        # store plain floats: a string or a 1-element array here would fail far from its cause
+        for name in ("E", "nu", "Sy") + (("rho",) if self.rho is not None else ()):
+            object.__setattr__(self, name, real_scalar(getattr(self, name), name))
         check_finite_positive(self.E, "E", "(Pa)")
         check_nu(self.nu)
-        sy = float(self.Sy)
-        if not (sy > 0) or math.isnan(sy):
+        if not (self.Sy > 0) or math.isnan(self.Sy):
             raise ValueError(f"Sy must be > 0 (Pa) (math.inf for a body that never yields); got {self.Sy!r}")
         if self.rho is not None:
             check_finite_positive(self.rho, "rho", "(kg/m^3)")
@@ -169,7 +171,7 @@ class Impact:
     """
 
     def __init__(self, sphere, R, flat=None, mass=None):
-        self._init(sphere, float(R), flat, None, mass)
+        self._init(sphere, real_scalar(R, "R"), flat, None, mass)
 
     @classmethod
     def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
@@ -179,7 +181,7 @@ class Impact:
         m1 = _sphere_mass(sphere1, R1, mass1, "mass1")
         m2 = _sphere_mass(sphere2, R2, mass2, "mass2")
         self = cls.__new__(cls)
-        self._init(sphere1, float(R1), sphere2, float(R2), m1 * m2 / (m1 + m2))
+        self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), m1 * m2 / (m1 + m2))
         return self
 
     def _init(self, sphere, R1, other, R2, mass):
@@ -261,22 +263,47 @@ class Impact:
         return f"Impact(sphere={self.sphere!r}, R_eff={self.R_eff!r}, flat={flat}, mass={self.mass!r})"
 
     # --- dimensional restitution API (eqs 16, 29-38) ---
-    def _v1_star(self, V1):
-        from ._validation import check_velocity
+    def V_max(self, extrapolate=False):
+        """Largest impact speed the model accepts (m/s): w_m* = 425 (JGM section 3.3), or with
+        ``extrapolate=True`` where the contact radius reaches the sphere's (a/R = 1, eq 12)."""
+        from .direct import v1_star_limit
 
-        return check_velocity(V1, "V1", "(m/s)") / self.V_c
+        return v1_star_limit(self.eps_y, self.nu, extrapolate) * self.V_c
+
+    def v1_star(self, V1, extrapolate=False):
+        """V1* = V1/V_c (-) for impact speeds V1 (m/s), eq (28); ValueError in m/s outside the domain."""
+        from ._validation import OMEGA_M_STAR_MAX, check_velocity
+        from .contact import omega_star_limit_kernel
+        from .direct import v1_star_limit
+
+        V = check_velocity(V1, "V1", "(m/s)")
+        v = V / self.V_c
+        lim = v1_star_limit(self.eps_y, self.nu, extrapolate)
+        over = v > lim
+        if np.any(over):
+            bad = float(V[over].flat[0] if V.ndim else V)
+            w_ar = omega_star_limit_kernel(self.eps_y, self.nu)
+            if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
+                raise ValueError(f"V1 = {bad!r} m/s is past the end of the Jackson-Green law for this impact: "
+                                 f"the contact radius reaches the sphere's (a/R = 1, eq 12) at "
+                                 f"V1 = {lim * self.V_c:.6g} m/s (w_m* = {w_ar:.6g})")
+            raise ValueError(f"V1 = {bad!r} m/s gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit "
+                             f"(JGM section 3.3); for this impact that limit is V1 = {lim * self.V_c:.6g} m/s "
+                             f"(V1* = {lim:.6g}, V_c = {self.V_c:.6g} m/s). Pass extrapolate=True to "
+                             "compute beyond it (up to a/R = 1) with the same formulas")
+        return v
 
     def omega_m(self, V1, extrapolate=False):
         """Maximum interference omega_m (m) for impact speed V1 (m/s), eq (29)."""
         from . import direct
 
-        return direct.omega_m_star(self._v1_star(V1), self.eps_y, self.nu, extrapolate=extrapolate) * self.omega_c
+        return direct.omega_m_star(self.v1_star(V1, extrapolate), self.eps_y, self.nu, extrapolate=extrapolate) * self.omega_c
 
     def e(self, V1, unloading="jcg", extrapolate=False):
         """Coefficient of restitution e = V2/V1 (-) for impact speed V1 (m/s), eqs (16), (38)."""
         from . import direct
 
-        return direct.e_star(self._v1_star(V1), self.eps_y, self.nu, unloading=unloading, extrapolate=extrapolate)
+        return direct.e_star(self.v1_star(V1, extrapolate), self.eps_y, self.nu, unloading=unloading, extrapolate=extrapolate)
 
     def rebound_velocity(self, V1, unloading="jcg", extrapolate=False):
         """Rebound speed V2 (m/s) for impact speed V1 (m/s), eq (38)."""
@@ -291,7 +318,7 @@ class Impact:
         """
         from . import direct
 
-        w_res, r_ratio = direct.residual_star(self._v1_star(V1), self.eps_y, self.nu,
+        w_res, r_ratio = direct.residual_star(self.v1_star(V1, extrapolate), self.eps_y, self.nu,
                                               unloading=unloading, extrapolate=extrapolate)
         return w_res * self.omega_c, r_ratio * self.R_eff
 

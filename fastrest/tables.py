@@ -50,6 +50,10 @@ QUANTITY_META = {
 #: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
 OMEGA_LIMIT_TOL = 1e-9
 OMEGA_LIMIT = OMEGA_M_STAR_MAX * (1.0 + OMEGA_LIMIT_TOL)
+#: Below this eps_y the JG law's end (a/R = 1, eq 12) lies past w* = 425 for every 0 <= nu <= 0.5
+#: (it reaches 425 at eps_y = 0.010223 for nu = 0.5, 0.0141 for nu = 0; tested), so only wider
+#: tables pay for the per-point a/R limit.
+EPS_Y_AR_BINDS = 0.0102
 OMEGA_GRID_HERTZ = 20  # nodes of the W* grid on [0, 1.9]
 OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
 
@@ -72,6 +76,15 @@ def default_table_path():
             return p
     raise FileNotFoundError("fastrest's default table is missing (expected fastrest/_tables/default.h5 "
                             "or tables/default.h5); rebuild it with `fastrest build --default`")
+
+
+def source_tree_table_path():
+    """``tables/default.h5`` of the source checkout this fastrest runs from, or None if installed
+    without one (``fastrest build --default`` rebuilds it there, whatever the working directory)."""
+    root = Path(__file__).resolve().parent.parent
+    if (root / "pyproject.toml").is_file() and (root / "tables").is_dir():
+        return root / "tables" / "default.h5"
+    return None
 
 
 def cache_dir():
@@ -336,7 +349,7 @@ def _lagrange6(x, x0, inv_h, n):
 def table_value(tab, q, v, eps_y, nu):
     """Quantity q (0 w_m*, 1 e_jcg, 2 loss_jcg, 3 e_etsion, 4 loss_etsion) at (V1*, eps_y, nu).
 
-    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425) or for invalid input.
+    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past a/R = 1 for eps_y > 0.0102) or for invalid input.
     """
     return _interpolate(tab, q, v, eps_y, nu, True)
 
@@ -366,11 +379,14 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     j, wn = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
     row = 6 * tab.n_nu  # one eps_y node's coefficients
     first = tab.block_offset[b] + ((cell - tab.block_cell0[b]) * n + i) * row + 6 * j
-    if check_limit and v > tab.v_safe and q != 0:
-        if not _stencil_sum(tab.coef, first, row, u, we, wn) <= OMEGA_LIMIT:
+    w_lim = OMEGA_LIMIT
+    if check_limit and v > tab.v_safe:
+        if eps_y > EPS_Y_AR_BINDS:  # the law may end (a/R = 1) before w* = 425
+            w_lim = min(w_lim, omega_star_limit_kernel(eps_y, nu) * (1.0 + OMEGA_LIMIT_TOL))
+        if q != 0 and not _stencil_sum(tab.coef, first, row, u, we, wn) <= w_lim:
             return np.nan
     r = _stencil_sum(tab.coef, first + q * tab.block_qstride[b], row, u, we, wn)
-    if check_limit and q == 0 and not r <= OMEGA_LIMIT:
+    if check_limit and q == 0 and not r <= w_lim:
         return np.nan
     return r
 
@@ -526,6 +542,12 @@ class Table:
                                  "(use fastrest.direct, fastrest.curve, or build a wider table)")
         v0, e0, n0 = float(v[0]), float(e[0]), float(n[0])
         lim = v1_star_limit(e0, n0)
+        w_ar = omega_star_limit_kernel(e0, n0)
+        if v0 > lim and w_ar <= OMEGA_M_STAR_MAX:
+            # large eps_y: the JG law ends (a/R = 1) before w_m* = 425
+            raise ValueError(f"v1_star = {v0!r} is past the end of the Jackson-Green law for eps_y = {e0!r}, "
+                             f"nu = {n0!r}: a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. V1* = {lim:.10g} "
+                             "(eq 12 needs 0 < a/R < 1)")
         if v0 > lim:
             raise ValueError(f"v1_star = {v0!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit "
                              f"(JGM section 3.3); for eps_y = {e0!r}, nu = {n0!r} that limit is "
@@ -722,7 +744,27 @@ _LOADED = {}
 
 
 def load_table(path=None):
-    """Load a table once per process (default: the shipped one) and return the :class:`Table`."""
+    """Load a restitution table once per process and return it.
+
+    The file is read into NumPy arrays and closed; later calls with the same path return the same
+    :class:`Table` without touching the file again.
+
+    Parameters
+    ----------
+    path : str or path-like, optional
+        An HDF5 table written by ``fastrest build``. Default: the shipped table
+        (0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45, up to w_m* = 425).
+
+    Returns
+    -------
+    Table
+
+    Raises
+    ------
+    TableFileError
+        The file is missing, truncated, corrupted (checksum), not a fastrest table, or of an older
+        or newer format version; the message names the file and what is wrong.
+    """
     key = str(Path(path).resolve()) if path is not None else None
     if key not in _LOADED:
         _LOADED[key] = read(default_table_path() if path is None else path)
@@ -742,21 +784,62 @@ def cached_table(grid=None, progress=None):
 
 # --- the default-table fast API (fastrest.omega_m_star, e_star, loss_star) -----------------------
 
-def omega_m_star(v1_star, eps_y, nu):
-    """w_m* = omega_m/omega_c (-) from the default table; each point may have its own material.
+_TOP_DOC = """{what}, from the shipped default table.
 
-    Broadcasts over all three arguments. Same domain rules as :func:`fastrest.direct.omega_m_star`
-    (ValueError outside the table or past w_m* = 425; ValidityWarning outside the validated range),
-    without ``extrapolate``. Accuracy: the ``measured_error`` attribute of the table file.
+    Each point may have its own material. Interpolates the table of :func:`load_table` (accuracy:
+    its ``measured_error`` attribute, ``fastrest info``; for the shipped table <= 1e-9 relative,
+    except the Etsion 1 - e^2 near its zero crossing, see the README). For one material
+    :func:`fastrest.curve` is faster and more accurate; :mod:`fastrest.direct` is the exact solver.
+
+    Parameters
+    ----------
+    v1_star : float or array_like
+        Normalised impact speed V1* = V1/V_c (-), JGM eq (30); >= 0. V1* <= 1 is elastic (e = 1).
+    eps_y : float or array_like
+        Sy/E' (-), JGM eq (11); within the table's range (shipped: 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material (-); within the table's range (shipped: 0.2-0.45).{extra}
+
+    Returns
+    -------
+    float or ndarray
+        {returns}, broadcast over the three inputs (a float for scalar inputs).
+
+    Raises
+    ------
+    TypeError
+        An input is not a real number (string, bool, None, complex).
+    ValueError
+        v1_star negative or NaN; eps_y or nu outside the table; V1* past the model's limit
+        w_m* = 425 (JGM section 3.3; the message gives that V1* for the material). No
+        ``extrapolate`` here: use :mod:`fastrest.direct` or :func:`fastrest.curve`.
+
+    Warns
+    -----
+    ValidityWarning
+        Only for tables wider than the paper's validated range, at points outside it.
     """
+
+_UNLOADING_DOC = """
+    unloading : {"jcg", "etsion"}
+        Unloading model: Jackson-Chusoipin-Green, JGM eq (35) (default), or Etsion et al., eq (33)."""
+
+
+def omega_m_star(v1_star, eps_y, nu):
     return load_table().omega_m_star(v1_star, eps_y, nu)
 
 
 def e_star(v1_star, eps_y, nu, unloading="jcg"):
-    """Coefficient of restitution (-) from the default table; see :func:`omega_m_star`."""
     return load_table().e_star(v1_star, eps_y, nu, unloading)
 
 
 def loss_star(v1_star, eps_y, nu, unloading="jcg"):
-    """1 - e^2 (-) from the default table; see :func:`omega_m_star`."""
     return load_table().loss_star(v1_star, eps_y, nu, unloading)
+
+
+omega_m_star.__doc__ = _TOP_DOC.format(
+    what="Normalised maximum interference w_m* = omega_m/omega_c (JGM eq 29)", extra="", returns="w_m* (-)")
+e_star.__doc__ = _TOP_DOC.format(
+    what="Coefficient of restitution e = V2/V1 (JGM eqs 16, 38)", extra=_UNLOADING_DOC, returns="e (-)")
+loss_star.__doc__ = _TOP_DOC.format(
+    what="Dissipated fraction of the impact energy 1 - e^2", extra=_UNLOADING_DOC, returns="1 - e^2 (-)")

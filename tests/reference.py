@@ -3,7 +3,7 @@
 Used only by the test-suite.  It is deliberately independent of the ``fastrest``
 package (nothing is imported from it) and is written directly from the paper
 (Jackson, Green & Marghitu, Nonlinear Dyn. 60 (2010) 217-229, eqs 8-15, 22-38)
-and /work/shared/MODEL.md, sections 2-4.
+and the project's model notes (the algebra of eqs 8-38 as docs/model.md states it).
 
 Everything is evaluated in a private mpmath context at 40 significant digits
 (the global ``mpmath.mp`` context is never touched), integrals with

@@ -8,6 +8,7 @@ import json
 import os
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import h5py
@@ -79,7 +80,8 @@ def test_e_json(capsys):
     V = np.array(README_V)
     for key, ref in (("V1_star", V / imp.V_c), ("omega_m_star", imp.omega_m(V) / imp.omega_c),
                      ("e_jcg", imp.e(V, unloading="jcg")), ("e_etsion", imp.e(V, unloading="etsion")),
-                     ("V2_jcg", imp.rebound_velocity(V, unloading="jcg"))):
+                     ("V2_jcg", imp.rebound_velocity(V, unloading="jcg")),
+                     ("V2_etsion", imp.rebound_velocity(V, unloading="etsion"))):
         np.testing.assert_allclose([r[key] for r in rows], ref, rtol=1e-12, atol=0, err_msg=key)
 
 
@@ -117,6 +119,34 @@ def test_e_past_425_is_an_error_unless_extrapolating(capsys):
     assert code == 0, err
     doc = json.loads(out)
     assert any("425" in w for w in doc["warnings"])
+
+
+def test_e_single_speed_no_numpy_warning(capsys):
+    """One --V: no FutureWarning from NumPy's broadcast views reaches the user or the output."""
+    args = README_ARGS[:README_ARGS.index("--V")] + ["--V", "1", "--json"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        code, out, err = run(args, capsys)
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["warnings"] == []
+    assert doc["impacts"][0]["e_jcg"] == pytest.approx(readme_impact().e(1.0), rel=1e-12)
+
+
+def test_e_errors_name_the_flags(capsys):
+    base = README_ARGS[:README_ARGS.index("--rho")]
+    code, out, err = run(base + ["--V", "1"], capsys)
+    assert code == 2 and "--rho" in err and "--mass" in err
+    code, out, err = run(README_ARGS[:README_ARGS.index("--V")] + ["--V", "1", "-2"], capsys)
+    assert code == 2 and "--V" in err and "m/s" in err and "-2" in err
+    imp = readme_impact()
+    v = imp.V_max() * 2
+    code, out, err = run(README_ARGS[:README_ARGS.index("--V")] + ["--V", repr(v)], capsys)
+    assert code == 2 and "--V" in err and f"{imp.V_max():.6g} m/s" in err
+    code, out, err = run(README_ARGS + ["--flat-E", "70e9"], capsys)
+    assert code == 2 and "--flat-nu" in err
+    code, out, err = run(README_ARGS + ["--flat-Sy", "1e8"], capsys)
+    assert code == 2 and "--flat-E" in err
 
 
 def test_e_missing_argument_exits_nonzero(capsys):
@@ -188,6 +218,29 @@ def test_build_bad_grid_is_an_error(capsys, tmp_path):
     assert not (tmp_path / "t.h5").exists()
     code, out, err = run(["build", "--default", "--n-nu", "7"], capsys)
     assert code != 0
+
+
+def test_build_default_targets_source_tree_not_cwd(capsys, tmp_path, monkeypatch):
+    """`build --default` rebuilds the checkout's tables/default.h5 from any working directory;
+    an install without a source tree needs --out."""
+    assert tables.source_tree_table_path() == REPO / "tables" / "default.h5"
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(tables, "source_tree_table_path", lambda: None)
+    code, out, err = run(["build", "--default", "--no-progress"], capsys)
+    assert code == 2 and "--out" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_help_lists_commands_and_defaults(capsys):
+    with pytest.raises(SystemExit):
+        cli.main(["--help"])
+    out = capsys.readouterr().out
+    for cmd in ("e", "build", "info", "warmup", "figures"):
+        assert f"    {cmd} " in out
+    with pytest.raises(SystemExit):
+        cli.main(["build", "--help"])
+    out = capsys.readouterr().out
+    assert f"[default: {tables.DEFAULT_GRID['n_eps_y']}]" in " ".join(out.split())
 
 
 def test_module_entry_point_subprocess(tmp_path):

@@ -316,13 +316,13 @@ def test_validated_range_does_not_warn():
             fastrest.curve(eps, nu, v_max=10.0)
 
 
-@pytest.mark.parametrize("eps", [0.0, -0.001, math.nan, math.inf, "x"])
+@pytest.mark.parametrize("eps", [0.0, -0.001, math.nan, math.inf])
 def test_bad_eps_y_raises(eps):
     with pytest.raises(ValueError, match="eps_y"):
         fastrest.curve(eps, 0.3)
 
 
-@pytest.mark.parametrize("nu", [-0.1, 0.5, 0.7, math.nan, "x"])
+@pytest.mark.parametrize("nu", [-0.1, 0.5, 0.7, math.nan])
 def test_bad_nu_raises(nu):
     with pytest.raises(ValueError, match="nu"):
         fastrest.curve(0.005, nu)

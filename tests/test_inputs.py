@@ -1,0 +1,169 @@
+"""Input types and messages shared by every API layer (fastrest._validation).
+
+Non-numbers (strings, which NumPy would parse; booleans; None, which NumPy would turn into NaN;
+complex numbers) raise TypeError naming the parameter; speeds past the model's limit raise
+ValueError in the caller's own units and parameter names.
+"""
+import math
+import os
+import re
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import fastrest
+from fastrest import direct, tables
+from fastrest.contact import omega_star_limit_kernel
+
+NOT_REAL = ["5", b"5", True, np.bool_(False), None, 1 + 2j, [1.0, None], [2.0, "3"], np.array(["1"]),
+            np.array([True]), np.array([1 + 0j])]
+
+
+def _named(name):
+    return re.compile(r"(?<![A-Za-z_])" + re.escape(name) + r"(?![A-Za-z_])")
+
+
+@pytest.mark.parametrize("bad", NOT_REAL, ids=repr)
+@pytest.mark.parametrize("position, name", [(0, "v1_star"), (1, "eps_y"), (2, "nu")])
+def test_not_real_raises_type_error_naming_parameter(bad, position, name):
+    args = [5.0, 0.005, 0.33]
+    args[position] = bad
+    for f in (fastrest.e_star, fastrest.omega_m_star, fastrest.loss_star, direct.e_star, direct.omega_m_star):
+        with pytest.raises(TypeError, match=_named(name)):
+            f(*args)
+
+
+@pytest.mark.parametrize("bad", NOT_REAL, ids=repr)
+def test_curve_and_scene_reject_not_real(bad):
+    c = fastrest.curve(0.005, 0.33, v_max=10.0)
+    for f in (c.e, c.omega_m, c.loss):
+        with pytest.raises(TypeError, match="v1_star"):
+            f(bad)
+    if not isinstance(bad, (list, np.ndarray)):
+        with pytest.raises(TypeError, match="eps_y"):
+            fastrest.curve(bad, 0.33)
+        with pytest.raises(TypeError, match=_named("nu")):
+            fastrest.curve(0.005, bad)
+
+
+def test_real_number_types_accepted():
+    ref = direct.e_star(5.0, 0.005, 0.33)
+    for v in (5, np.int32(5), np.float32(5.0), np.array(5.0), [5.0], np.array([5], dtype=np.uint8),
+              np.array([5.0], dtype=object)):
+        assert np.ravel(fastrest.e_star(v, 0.005, 0.33))[0] == pytest.approx(ref, rel=1e-9)
+
+
+@pytest.mark.parametrize("field", ["E", "nu", "Sy", "rho"])
+@pytest.mark.parametrize("bad", ["200e9", True, None, [1.0, 2.0], 1j])
+def test_material_rejects_non_numbers(field, bad):
+    kw = dict(E=200e9, nu=0.3, Sy=1e9, rho=7800.0)
+    if field == "rho" and bad is None:
+        return  # rho=None means "no density"
+    kw[field] = bad
+    with pytest.raises(TypeError, match=_named(field)):
+        fastrest.Material(**kw)
+
+
+def test_material_stores_plain_floats():
+    m = fastrest.Material(np.float32(2e11), np.array(0.3), 10**9, rho=np.int64(7800))
+    for v in (m.E, m.nu, m.Sy, m.rho):
+        assert type(v) is float
+    assert m == fastrest.Material(float(np.float32(2e11)), 0.3, 1e9, rho=7800.0)
+
+
+@pytest.mark.parametrize("bad", ["0.01", None, True])
+def test_impact_radius_type(bad):
+    steel = fastrest.Material(200e9, 0.33, 1.12e9, rho=7800)
+    with pytest.raises(TypeError, match=_named("R")):
+        fastrest.Impact(steel, bad)
+
+
+# ---- limits in the caller's units ----------------------------------------------------------
+
+def steel_impact():
+    return fastrest.Impact(fastrest.Material(200e9, 0.33, 1.12e9, rho=7800), 0.01)
+
+
+def test_impact_limit_in_metres_per_second():
+    imp = steel_impact()
+    v_max = imp.V_max()
+    assert v_max == pytest.approx(direct.v1_star_limit(imp.eps_y, imp.nu) * imp.V_c, rel=1e-15)
+    assert imp.omega_m(v_max * (1 - 1e-9)) / imp.omega_c == pytest.approx(425.0, rel=1e-7)
+    for V in (v_max * 1.001, [1.0, v_max * 2]):
+        with pytest.raises(ValueError, match=r"V1 = [0-9.e+]+ m/s gives w_m\* > 425") as exc:
+            imp.e(V)
+        assert f"{v_max:.6g} m/s" in str(exc.value)
+    # extrapolating, the limit moves to a/R = 1
+    v_ar = imp.V_max(extrapolate=True)
+    assert v_ar > v_max
+    with pytest.warns(fastrest.ExtrapolationWarning):
+        assert 0.0 < imp.e(v_ar * 0.999, extrapolate=True) < 1.0
+    with pytest.raises(ValueError, match=r"a/R = 1.*m/s"):
+        imp.e(v_ar * 1.001, extrapolate=True)
+
+
+def test_negative_speed_named_in_metres_per_second():
+    with pytest.raises(ValueError, match=r"V1 must be finite and >= 0 \(m/s\)"):
+        steel_impact().e(-1.0)
+
+
+def test_curve_v_max_named():
+    lim = direct.v1_star_limit(0.005, 0.33)
+    with pytest.raises(ValueError, match=r"^v_max = .* 425"):
+        fastrest.curve(0.005, 0.33, v_max=lim * 1.01)
+
+
+def test_a_over_r_threshold_of_tables():
+    """Below EPS_Y_AR_BINDS the law's end a/R = 1 is past w* = 425 for every nu (so the table
+    kernel skips that check there); just above it, for nu near 0.5, it is not."""
+    for nu in np.linspace(0.0, 0.5, 51):
+        assert omega_star_limit_kernel(tables.EPS_Y_AR_BINDS, nu) > 425.0
+    assert omega_star_limit_kernel(tables.EPS_Y_AR_BINDS * 1.003, 0.5) < 425.0
+
+
+def test_wide_table_stops_at_a_over_r_limit():
+    """A table past eps_y = 0.0102 holds materials whose law ends (a/R = 1) before w* = 425:
+    it raises there, as the direct solver does, instead of returning the formula's continuation."""
+    g = dict(eps_y_min=0.015, eps_y_max=0.025, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
+             bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6)
+    t = tables.Table(tables.generate(g, progress=False))
+    eps, nu = 0.02, 0.32
+    assert omega_star_limit_kernel(eps, nu) < 425.0
+    lim = direct.v1_star_limit(eps, nu)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", fastrest.ValidityWarning)
+        assert t.e_star(lim * 0.99, eps, nu) == pytest.approx(direct.e_star(lim * 0.99, eps, nu), rel=1e-4)
+        for v in (lim * 1.001, [10.0, lim * 1.5]):
+            with pytest.raises(ValueError, match="a/R reaches 1"):
+                t.e_star(v, eps, nu)
+            with pytest.raises(ValueError, match="a/R reaches 1"):
+                t.omega_m_star(v, eps, nu)
+        out = np.empty(1)
+        from fastrest.tables import _table_array
+        _table_array(t.data, 1, np.array([lim * 1.001]), np.array([eps]), np.array([nu]), out)
+        assert math.isnan(out[0])
+
+
+def test_single_element_inputs_raise_no_numpy_warning():
+    """Broadcasting a 1-element array against scalars must not hand Numba a broadcast view
+    (NumPy warns FutureWarning when its writeable flag is read)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        direct.solve(np.array([19.0]), 0.005, 0.33, "jcg")
+        fastrest.e_star(np.array([5.0]), 0.005, 0.33)
+        direct.e_star(np.array([5.0]), np.array([0.005]), 0.33)
+
+
+def test_submodules_reachable_after_import_fastrest():
+    code = ("import fastrest; fastrest.models.MODELS['thornton']; fastrest.rough.RoughSurface; "
+            "fastrest.jit.e_curve; fastrest.figures; import sys; print('ok')")
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[1]) + os.pathsep + env.get("PYTHONPATH", "")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
+    with pytest.raises(AttributeError, match="no_such_thing"):
+        fastrest.no_such_thing
