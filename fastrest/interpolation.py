@@ -12,7 +12,6 @@ cell's 6 Chebyshev points (first kind, so never at the cell's ends, where the JG
 branch). A cell boundary sits exactly at V1* = 1.9^1.25 and the last cell ends at v_max, so no cell
 straddles the kink at w* = 1.9 or the end of the domain.
 """
-import math
 
 import numba as nb
 import numpy as np
