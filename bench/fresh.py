@@ -96,16 +96,49 @@ def _run(code, env, timeout=600):
     return wall, json.loads(p.stdout.strip().splitlines()[-1])
 
 
+# The floor any Numba library pays: the same imports, one cached @njit call (which initialises
+# Numba's typing and target registries; Numba imports scipy.linalg for BLAS then), and the
+# interpreter's exit, whose final garbage collection walks those registries.
+_FLOOR_MODULE = """
+import numba
+
+@numba.njit(cache=True)
+def f(x):
+    return x + 1.0
+"""
+_FLOOR = """
+import time
+t0 = time.perf_counter()
+import numpy, h5py, numba
+import fastrest_bench_floor
+fastrest_bench_floor.f(1.0)
+t1 = time.perf_counter()
+import json
+print(json.dumps({"import_s": t1 - t0, "call_s": 0.0}))
+"""
+
+
 def first_use(cfg, log=print):
-    """Wall time of a fresh process and, inside it, import + first call; warm and empty cache."""
+    """Wall time of a fresh process and, inside it, import + first call; warm and empty cache.
+
+    Each warm run is paired with a run of the Numba floor (``_FLOOR``) right after it; the
+    median of the per-pair ratios says what fastrest adds to it."""
     res = {}
+    floor_dir = tempfile.mkdtemp(prefix="fastrest-bench-floor-")
+    Path(floor_dir, "fastrest_bench_floor.py").write_text(_FLOOR_MODULE)
+    floor_env = _env(str(Path(floor_dir, "cache")))
+    floor_env["PYTHONPATH"] = floor_dir + os.pathsep + floor_env["PYTHONPATH"]
+    _run(_FLOOR, floor_env)  # warm its cache
+    floors = []
     for name, call in FIRST_USE.items():
         code = _LATENCY.format(call=call)
         _run(code, _env())  # make sure the default cache is warm for this call
         rows = {"warm": [], "cold": []}
         for _ in range(cfg["fresh_warm"]):
             wall, inner = _run(code, _env())
-            rows["warm"].append({"wall_s": wall, **inner})
+            floor_wall, _ = _run(_FLOOR, floor_env)
+            floors.append(floor_wall)
+            rows["warm"].append({"wall_s": wall, "floor_wall_s": floor_wall, **inner})
         for _ in range(cfg["fresh_cold"]):
             d = tempfile.mkdtemp(prefix="fastrest-bench-numba-")
             try:
@@ -120,11 +153,15 @@ def first_use(cfg, log=print):
                 "wall_min_s": float(np.min([x["wall_s"] for x in r])) if r else None,
                 "import_median_s": float(np.median([x["import_s"] for x in r])) if r else None,
                 "call_median_s": float(np.median([x["call_s"] for x in r])) if r else None,
-                "inside_median_s": float(np.median([x["import_s"] + x["call_s"] for x in r])) if r else None}
+                "inside_median_s": float(np.median([x["import_s"] + x["call_s"] for x in r])) if r else None,
+                "ratio_to_floor": float(np.median([x["wall_s"] / x["floor_wall_s"] for x in r]))
+                if r and "floor_wall_s" in r[0] else None}
             for k, r in rows.items()}
     # interpreter + numpy start-up alone, for scale
     wall = [_run("import json, numpy; print(json.dumps({}))", _env())[0] for _ in range(max(1, cfg["fresh_warm"]))]
     res["_python_numpy_startup_s"] = float(np.median(wall))
+    res["_numba_floor_s"] = float(np.median(floors))
+    shutil.rmtree(floor_dir, ignore_errors=True)
     return res
 
 

@@ -154,7 +154,9 @@ def headline(R):
         ["build the default table (`fastrest build --default`)", f"{_med(bt['build_default_s']):.1f} s", "", ""],
         ["build one curve, full range (`fastrest.curve(0.005, 0.33)`)", fmt_time(cv["median_s"], "ms"), "", ""],
         ["first use in a fresh process, warm Numba cache (`e_star` / `curve`)",
-         f"{warm['wall_median_s']:.2f} s / {warm_c['wall_median_s']:.2f} s", "", ""],
+         f"{warm['wall_median_s']:.2f} s / {warm_c['wall_median_s']:.2f} s"
+         + (f" (Numba's floor: {fr['first_use']['_numba_floor_s']:.2f} s)"
+            if fr["first_use"].get("_numba_floor_s") is not None else ""), "", ""],
     ]
     met = sum(t["met"] for t in R["targets"])
     head = ["", "time (median)", "x closed-form fit", "worst relative error"]
@@ -349,7 +351,16 @@ def results_md(R):
                          f"{x['call_median_s']:.2f} s", f"{x['wall_median_s'] / fit_s:.2g}"])
     a(md_table(["first call", "Numba cache", "runs", "whole process, median (min)", "import fastrest",
                 "first call", "= fit evaluations"], rows))
-    a(f"\nA process that only imports numpy takes {fr['first_use']['_python_numpy_startup_s']:.2f} s here.\n")
+    a(f"\nA process that only imports numpy takes {fr['first_use']['_python_numpy_startup_s']:.2f} s here.")
+    if fr["first_use"].get("_numba_floor_s") is not None:
+        ratios = ", ".join(f"`{k}` {r['warm']['ratio_to_floor']:.2f}x" for k, r in fr["first_use"].items()
+                           if not k.startswith("_") and r["warm"].get("ratio_to_floor") is not None)
+        a(f"Numba's own floor, a process that imports numpy, h5py and numba and calls one cached "
+          f"`@njit` function (the first call loads Numba's typing and target registries, and Numba "
+          f"imports scipy.linalg for BLAS; at exit Python's final garbage collection walks those "
+          f"registries): {fr['first_use']['_numba_floor_s']:.2f} s, run right after each warm "
+          f"fastrest run; fastrest's whole process against it (median of the pairs' ratios): {ratios}.")
+    a("")
     a("### Peak memory (fresh processes)\n")
     mib = lambda x: "-" if x is None else f"{x:.0f} MiB"  # noqa: E731
     rows = [[k, mib(x.get("process_peak_mib")), mib(x["rss_before_mib"]), mib(x["op_peak_mib"]),

@@ -83,6 +83,9 @@ def evaluate(R):
                          f"{w['wall_median_s']:.2f} s whole process (import + call inside it "
                          f"{w['inside_median_s']:.2f} s; empty cache {r['cold']['wall_median_s']:.2f} s)"
                          if r["cold"]["runs"] else f"{w['wall_median_s']:.2f} s"))
+        if fr["first_use"].get("_numba_floor_s") is not None and w.get("ratio_to_floor") is not None:
+            rows[-1]["measured"] += (f"; Numba's own floor {fr['first_use']['_numba_floor_s']:.2f} s, "
+                                     f"fastrest {w['ratio_to_floor']:.2f}x it")
 
     # 8. Curve accuracy
     ce = se["curve_errors"][5] if 5 in se["curve_errors"] else se["curve_errors"]["5"]
