@@ -3,6 +3,8 @@
 The Python layer validates and raises; the jitted kernels underneath return NaN for points outside
 the model's definition, so batch loops never raise.
 """
+import os
+import sys
 import warnings
 
 import numpy as np
@@ -103,7 +105,21 @@ def check_velocity(v, name, unit="(dimensionless, V1/Vc)"):
     return a
 
 
-def warn_if_outside_validated(eps_y, nu, stacklevel=3):
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn(message, category):
+    """warnings.warn attributed to the first caller outside fastrest (the user's line), however
+    deep inside the package the warning is raised."""
+    f = sys._getframe(0)
+    level = 1
+    while f is not None and f.f_code.co_filename.startswith(_PACKAGE_DIR):
+        f = f.f_back
+        level += 1
+    warnings.warn(message, category, stacklevel=level)
+
+
+def warn_if_outside_validated(eps_y, nu):
     """Warn once (per call) if any material lies outside the paper's validated range."""
     eps_y = np.asarray(eps_y)
     nu = np.asarray(nu)
@@ -117,10 +133,6 @@ def warn_if_outside_validated(eps_y, nu, stacklevel=3):
             parts.append(f"eps_y outside [{lo}, {hi}]")
         if out_n:
             parts.append(f"nu outside [{lo_n}, {hi_n}]")
-        warnings.warn(
-            "input outside the range validated by Jackson, Green & Marghitu (2010): "
-            + " and ".join(parts)
-            + "; the model is computed as defined but is not validated there",
-            ValidityWarning,
-            stacklevel=stacklevel,
-        )
+        warn("input outside the range validated by Jackson, Green & Marghitu (2010): "
+             + " and ".join(parts) + "; the model is computed as defined but is not validated there",
+             ValidityWarning)

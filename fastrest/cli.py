@@ -50,7 +50,8 @@ def _cmd_e(args):
     try:
         v1 = imp.v1_star(V, args.extrapolate)
     except ValueError as exc:
-        raise ValueError(f"--V: {exc}") from None
+        msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
+        raise ValueError(f"--V: {msg}") from None
     with warnings.catch_warnings(record=True) as caught:
         # record the model's own warnings (validity, extrapolation) for the output; others pass through
         warnings.simplefilter("always", ValidityWarning)
@@ -149,10 +150,13 @@ def _cmd_info(args):
     print(f"{args.file}: {a['format']} version {a['format_version']}, written by fastrest {a['fastrest_version']}")
     print(f"  model: {a['references']}")
     g = a["grid"]
-    print(f"  grid: eps_y [{g['eps_y_min']}, {g['eps_y_max']}] ({g['n_eps_y']} nodes in C(nu) eps_y), "
-          f"nu [{g['nu_min']}, {g['nu_max']}] ({g['n_nu']}), {a['cells']['count']} cells in V1* "
-          f"(2^{g['bits_per_octave']} per octave, degree {a['cells']['degree']}) up to V1* = "
-          f"{a['cells']['v1_star_top']:.6g}")
+    blocks = ", ".join(f"{n} up to V1* = {v:g}" for v, n in g["eps_y_blocks"])
+    print(f"  grid: eps_y [{g['eps_y_min']}, {g['eps_y_max']}], nodes in C(nu) eps_y: "
+          + (f"{blocks}, then {g['n_eps_y']}" if blocks else f"{g['n_eps_y']}")
+          + f"; nu [{g['nu_min']}, {g['nu_max']}] ({g['n_nu']} nodes); W*(w*) on {g['n_eps_y_energy']} eps_y nodes")
+    print(f"  V1* cells: {a['cells']['count']} (2^{g['fine_bits_per_octave']} per octave up to "
+          f"V1* = {g['fine_v1_star_max']:g}, 2^{g['bits_per_octave']} above; degree {a['cells']['degree']}) "
+          f"up to V1* = {a['cells']['v1_star_top']:.6g}; closed form below 1.9^1.25")
     q = a["quadrature"]
     print(f"  quadrature: {q['rule']}, {q['order']} points per panel <= {q['panel_width_ln_w']} in ln w")
     for name, err in a.get("measured_error", {}).items():
@@ -216,15 +220,17 @@ _GRID_HELP = {
 
 
 def main(argv=None):
+    from ._version import __version__
     from .tables import DEFAULT_GRID
 
     p = argparse.ArgumentParser(prog="fastrest", description=_DESCRIPTION,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND", title="commands")
 
-    pe = sub.add_parser("e", help="e, w_m* and V2 of one sphere at given impact speeds (SI units, exact solver)",
+    pe = sub.add_parser("e", help="e and w_m* of one sphere at given impact speeds (SI units, exact solver)",
                         description="Critical values (JGM eqs 4-7, 23-28) and, per impact speed, V1* = V/V_c, "
-                                    "w_m* and e for both unloading models (exact solver).")
+                                    "w_m* and e for both unloading models (exact solver); --json adds "
+                                    "the rebound speeds V2 = e V (m/s).")
     pe.add_argument("--E", type=float, required=True, help="sphere Young's modulus (Pa)")
     pe.add_argument("--nu", type=float, required=True, help="sphere Poisson's ratio (-)")
     pe.add_argument("--Sy", type=float, required=True, help="sphere yield strength (Pa)")
@@ -275,6 +281,7 @@ def main(argv=None):
     pf.add_argument("--dpi", type=int, default=150, help="resolution (default: 150)")
     pf.set_defaults(func=_cmd_figures)
 
+    p.add_argument("--version", action="version", version=f"fastrest {__version__}")
     args = p.parse_args(argv)
     try:
         return args.func(args)

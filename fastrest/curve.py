@@ -16,13 +16,15 @@ form in the way libm implements exp, not an approximation of the model.
 The curve's data is a :class:`CurveData` namedtuple of scalars and arrays: pass it to the
 ``@njit`` functions of :mod:`fastrest.jit` from your own Numba code.
 """
+import functools
 import math
 from collections import namedtuple
 
 import numba as nb
 import numpy as np
 
-from ._validation import OMEGA_M_STAR_MAX, as_float_array, check_eps_y, check_nu, check_velocity, warn_if_outside_validated
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
+                          check_velocity, real_scalar, warn, warn_if_outside_validated)
 from .direct import raise_out_of_range, v1_star_limit, w_upper
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
@@ -249,9 +251,25 @@ class Curve:
     def __init__(self, eps_y, nu, unloading, data):
         self.eps_y, self.nu, self.unloading, self.data = eps_y, nu, unloading, data
         self.v_max = data.v_max
+        #: V1* of w_m* = 425; an extrapolated curve (``extrapolate=True``) extends past it.
+        self.v_limit = v1_star_limit(eps_y, nu)
         self._packed = [_pack(data, what, rows)
                         for what, rows in enumerate((data.omega_rows, data.e_rows, data.loss_rows))]
         self._entry = _scalar_entry()
+        if self.v_limit < self.v_max:
+            # only extrapolated curves pay for the check: wrap their methods per instance
+            for name in ("omega_m", "e", "loss"):
+                setattr(self, name, self._warning_past_limit(getattr(self, name)))
+
+    def _warning_past_limit(self, method):
+        @functools.wraps(method)
+        def checked(v1_star):
+            out = method(v1_star)
+            if np.any(np.asarray(v1_star, dtype=np.float64) > self.v_limit):
+                warn(f"V1* past {self.v_limit:.6g} (w_m* = {OMEGA_M_STAR_MAX:g}): extrapolated, the JG law "
+                     "is not validated there", ExtrapolationWarning)
+            return out
+        return checked
 
     def __repr__(self):
         return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
@@ -339,18 +357,19 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
     >>> c = fastrest.curve(0.005, 0.33, v_max=200.0)       # doctest: +SKIP
     >>> c.e([2.0, 20.0, 200.0])                              # doctest: +SKIP
     """
-    eps_y = float(check_eps_y(eps_y))
-    nu = float(check_nu(nu))
+    eps_y = real_scalar(eps_y, "eps_y")
+    nu = real_scalar(nu, "nu")
+    check_eps_y(eps_y)
+    check_nu(nu)
     if v_max is not None:
-        v_max = float(check_velocity(v_max, "v_max"))
+        v_max = float(check_velocity(real_scalar(v_max, "v_max"), "v_max"))
     warn_if_outside_validated(eps_y, nu)
     data = build_curve_data(eps_y, nu, unloading, v_max, extrapolate)
-    if extrapolate and data.v_max > v1_star_limit(eps_y, nu):
-        import warnings
-        from ._validation import ExtrapolationWarning
-        warnings.warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (extrapolated)",
-                      ExtrapolationWarning, stacklevel=2)
-    return Curve(eps_y, nu, unloading, data)
+    c = Curve(eps_y, nu, unloading, data)
+    if c.v_limit < data.v_max:
+        warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (V1* = {c.v_limit:.6g}) to "
+             f"V1* = {data.v_max:.6g}: extrapolated there; evaluations past it warn too", ExtrapolationWarning)
+    return c
 
 
 # --- scenes: several materials, one batch call ------------------------------------------------
@@ -406,6 +425,8 @@ class Scene:
         cat = [np.ascontiguousarray(np.concatenate([getattr(first, f)[:N_HERTZ]]
                                                    + [getattr(c.data, f)[N_HERTZ:] for c in self.curves]))
                for f in ("omega_rows", "e_rows", "loss_rows")]
+        self._v_limit = np.array([c.v_limit if c.v_limit < c.v_max else math.inf for c in self.curves])
+        self._extrapolated = bool(np.isfinite(self._v_limit).any())
         self.data = SceneData(models.pop(), np.array([c.v_max for c in self.curves]), shifts.pop(),
                               np.array([c.data.base for c in self.curves], dtype=np.int64), offset, *cat)
 
@@ -435,6 +456,9 @@ class Scene:
             i = int(np.flatnonzero(bad)[0])
             raise ValueError(f"v1_star = {float(vf[i])!r} is beyond v_max = {float(self.data.v_max[kf[i]])!r} "
                              f"of material {int(kf[i])} (build the scene with a larger v_max)")
+        if self._extrapolated and np.any(vf > self._v_limit[kf]):
+            warn(f"V1* past w_m* = {OMEGA_M_STAR_MAX:g} for an extrapolated material of the scene: "
+                 "the JG law is not validated there", ExtrapolationWarning)
         out = out.reshape(shape)
         return float(out) if out.ndim == 0 else out
 
@@ -463,5 +487,8 @@ def scene(materials, unloading="jcg", v_max=None, extrapolate=False):
         Largest V1* needed, for all materials or per material (default: each material's w_m* = 425).
     """
     materials = list(materials)
+    for k, m in enumerate(materials):
+        if np.ndim(m) != 1 or len(m) != 2:
+            raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {m!r}")
     vm = [None] * len(materials) if v_max is None else np.broadcast_to(v_max, (len(materials),)).tolist()
     return Scene([curve(e, n, unloading, v, extrapolate) for (e, n), v in zip(materials, vm)])

@@ -13,13 +13,12 @@ with the same formulas up to the point where a/R = 1 and issues an
 :class:`~fastrest.ExtrapolationWarning`.
 """
 import math
-import warnings
 
 import numba as nb
 import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_eps_y, check_nu,
-                          check_velocity, warn_if_outside_validated)
+                          check_velocity, warn, warn_if_outside_validated)
 from .contact import broadcast_inputs, omega_star_limit_kernel, shaped
 from .energy import V_SWITCH, f_star_kernel, omega_m_kernel
 from .unloading import restitution_kernel, unloading_code
@@ -64,7 +63,7 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     check_velocity(v, "v1_star")
     check_eps_y(eps_y)
     check_nu(nu)
-    warn_if_outside_validated(eps_y, nu, stacklevel=4)
+    warn_if_outside_validated(eps_y, nu)
     out = np.empty((5, v.size))
     if v.size == 0:
         return out, shape
@@ -73,9 +72,8 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     if np.any(bad):
         raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate)
     if extrapolate and np.any(out[0] > OMEGA_M_STAR_MAX):
-        warnings.warn(f"extrapolated past w_m* = {OMEGA_M_STAR_MAX:g}, the largest interference "
-                      "JGM computed; the JG law is not validated there", ExtrapolationWarning,
-                      stacklevel=4)
+        warn(f"extrapolated past w_m* = {OMEGA_M_STAR_MAX:g}, the largest interference "
+             "JGM computed; the JG law is not validated there", ExtrapolationWarning)
     return out, shape
 
 

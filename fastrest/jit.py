@@ -15,11 +15,13 @@ Build the data once in Python, pass it into your jitted function, and call these
         return total
 
 All functions take V1* = V1/V_c (dimensionless) and return NaN for input outside the data's
-domain (negative or NaN speed, V1* > v_max, material outside a table): check with ``x != x`` or
+domain (negative or NaN speed, V1* > v_max, material outside a table, a table's point past
+w_m* = 425 or a/R = 1): check with ``x != x`` or
 ``np.isnan`` if your code can produce such input. Tables: ``fastrest.load_table().data``;
 ``unloading`` is :data:`JCG` (eq 35) or :data:`ETSION` (eq 33).
 """
 import numba as nb
+import numpy as np
 
 from .curve import CurveData, SceneData, e_curve, loss_curve, omega_m_curve, scene_value
 from .tables import TableData, table_value
@@ -37,13 +39,19 @@ def omega_m_table(tab, v1_star, eps_y, nu):
 
 @nb.njit(cache=True)
 def e_table(tab, v1_star, eps_y, nu, unloading):
-    """e at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1). NaN outside the table."""
+    """e at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1), NaN for any other value.
+    NaN outside the table."""
+    if unloading != JCG and unloading != ETSION:
+        return np.nan
     return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
 
 
 @nb.njit(cache=True)
 def loss_table(tab, v1_star, eps_y, nu, unloading):
-    """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1). NaN outside the table."""
+    """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1), NaN for any other value.
+    NaN outside the table."""
+    if unloading != JCG and unloading != ETSION:
+        return np.nan
     return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
 
 

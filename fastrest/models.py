@@ -43,7 +43,6 @@ References
    Int. J. Impact Eng. 28 (2003) 929-946.
 """
 import math
-import warnings
 
 import numba
 import numpy as np
@@ -55,6 +54,7 @@ from ._validation import (
     check_finite_positive,
     check_nu,
     check_velocity,
+    warn,
 )
 from .materials import critical_velocity_ratios, poisson_factor
 
@@ -638,7 +638,7 @@ def wu(v1_star, eps_y, nu=None, *, scale="jgm"):
 # ---------------------------------------------------------------------------------------------
 # JGM empirical fits, eqs (42)-(45)
 # ---------------------------------------------------------------------------------------------
-def _warn_fit(v, eps, check_v_max, stacklevel=3):
+def _warn_fit(v, eps, check_v_max):
     lo, hi = EPS_Y_VALIDATED
     parts = []
     if np.any((eps < lo) | (eps > hi)):
@@ -646,9 +646,8 @@ def _warn_fit(v, eps, check_v_max, stacklevel=3):
     if check_v_max and np.any(v > JGM_FIT_V_MAX):
         parts.append(f"v1_star > {JGM_FIT_V_MAX:g} (beyond the range of eq 44)")
     if parts:
-        warnings.warn("JGM empirical fit used outside its fitted range: " + " and ".join(parts)
-                      + "; the formula is evaluated as printed", ValidityWarning,
-                      stacklevel=stacklevel)
+        warn("JGM empirical fit used outside its fitted range: " + " and ".join(parts)
+             + "; the formula is evaluated as printed", ValidityWarning)
 
 
 def jgm_fit_jcg(v1_star, eps_y):

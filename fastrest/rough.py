@@ -37,7 +37,7 @@ import numpy as np
 
 from . import forward as fw
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning,
-                          check_finite_positive, warn_if_outside_validated)
+                          check_finite_positive, warn, warn_if_outside_validated)
 from .contact import W_SWITCH, omega_star_limit_kernel
 from .interpolation import chebyshev_nodes, fit_cells, cell_polynomial
 from .materials import Impact, Material
@@ -701,9 +701,8 @@ class RoughSurface:
             raw = self._solve_gw(energy, unloading, extrapolate, M)
         out = self._assemble(flat, M, energy, raw, code)
         if extrapolate and np.any(out["w_star_max"] > OMEGA_M_STAR_MAX):
-            warnings.warn(f"summits loaded past w* = {OMEGA_M_STAR_MAX:g}, the largest interference "
-                          "JGM computed; the JG law is not validated there", ExtrapolationWarning,
-                          stacklevel=2)
+            warn(f"summits loaded past w* = {OMEGA_M_STAR_MAX:g}, the largest interference "
+                 "JGM computed; the JG law is not validated there", ExtrapolationWarning)
 
         def shaped(a):
             a = a.reshape(shape)

@@ -28,7 +28,7 @@ import numba as nb
 import numpy as np
 
 from . import _hdf5
-from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check_nu, check_eps_y,
+from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check_nu, check_eps_y, real_scalar,
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
@@ -109,8 +109,13 @@ def normalise_grid(grid=None, **overrides):
     unknown = set(g) - set(DEFAULT_GRID)
     if unknown:
         raise ValueError(f"unknown grid parameter(s) {sorted(unknown)}; valid: {sorted(DEFAULT_GRID)}")
-    for k in ("n_eps_y", "n_nu", "n_eps_y_energy"):
-        g[k] = int(g[k])
+    for k in ("n_eps_y", "n_nu", "n_eps_y_energy", "bits_per_octave", "fine_bits_per_octave"):
+        x = real_scalar(g[k], k)
+        if not x.is_integer():
+            raise ValueError(f"{k} must be a whole number; got {g[k]!r}")
+        g[k] = int(x)
+    for k in ("eps_y_min", "eps_y_max", "nu_min", "nu_max", "c_eps_y_map_rate", "fine_v1_star_max"):
+        g[k] = real_scalar(g[k], k)
     for k, m in (("n_eps_y", STENCIL_EPS), ("n_nu", STENCIL_NU), ("n_eps_y_energy", 2)):
         if g[k] < m:
             raise ValueError(f"{k} must be >= {m} (the interpolation stencil's size); got {g[k]}")
@@ -130,8 +135,7 @@ def normalise_grid(grid=None, **overrides):
         raise ValueError(f"c_eps_y_map_rate must be >= 0; got {g['c_eps_y_map_rate']}")
     check_eps_y(g["eps_y_min"], "eps_y_min")
     check_nu(g["nu_min"], "nu_min")
-    if not 0.0 < g["nu_max"] <= 0.5:
-        raise ValueError(f"nu_max must be in (0, 0.5]; got {g['nu_max']}")
+    check_nu(g["nu_max"], "nu_max")
     if not g["eps_y_max"] > g["eps_y_min"]:
         raise ValueError("eps_y_max must be > eps_y_min")
     if not g["nu_max"] > g["nu_min"]:
@@ -349,8 +353,11 @@ def _lagrange6(x, x0, inv_h, n):
 def table_value(tab, q, v, eps_y, nu):
     """Quantity q (0 w_m*, 1 e_jcg, 2 loss_jcg, 3 e_etsion, 4 loss_etsion) at (V1*, eps_y, nu).
 
-    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past a/R = 1 for eps_y > 0.0102) or for invalid input.
+    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past a/R = 1 for eps_y > 0.0102) or for invalid input
+    (including q outside 0-4).
     """
+    if not (q >= 0 and q < 5):  # the five QUANTITIES
+        return np.nan
     return _interpolate(tab, q, v, eps_y, nu, True)
 
 
@@ -527,7 +534,7 @@ class Table:
         bad = np.isnan(out)
         if bad.any():
             self._raise(v[bad], e[bad], n[bad])
-        warn_if_outside_validated(e, n, stacklevel=4)
+        warn_if_outside_validated(e, n)
         return shaped(out, shape)
 
     def _raise(self, v, e, n):
@@ -787,7 +794,7 @@ def cached_table(grid=None, progress=None):
 _TOP_DOC = """{what}, from the shipped default table.
 
     Each point may have its own material. Interpolates the table of :func:`load_table` (accuracy:
-    its ``measured_error`` attribute, ``fastrest info``; for the shipped table <= 1e-9 relative,
+    ``load_table().attrs["measured_error"]``, or ``fastrest info``; for the shipped table <= 1e-9 relative,
     except the Etsion 1 - e^2 near its zero crossing, see the README). For one material
     :func:`fastrest.curve` is faster and more accurate; :mod:`fastrest.direct` is the exact solver.
 

@@ -198,9 +198,22 @@ def test_extrapolate_matches_direct_and_warns():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ExtrapolationWarning)
         ref = direct.solve(v, eps, nu, extrapolate=True)
-    np.testing.assert_allclose(c.e(v), ref["e"], rtol=TOL_E, atol=0)
-    np.testing.assert_allclose(c.omega_m(v), ref["omega_m_star"], rtol=TOL_E, atol=0)
-    np.testing.assert_allclose(c.loss(v), ref["loss"], rtol=TOL_LOSS, atol=0)
+    for f, key, tol in ((c.e, "e", TOL_E), (c.omega_m, "omega_m_star", TOL_E), (c.loss, "loss", TOL_LOSS)):
+        with pytest.warns(ExtrapolationWarning, match="425") as rec:   # every evaluation past the limit
+            np.testing.assert_allclose(f(v), ref[key], rtol=tol, atol=0)
+        assert rec[0].filename == __file__        # attributed to the caller's line
+        with pytest.warns(ExtrapolationWarning):
+            f(float(v[-1]))                       # the scalar path too
+    with warnings.catch_warnings():                # inside the validated range: silent
+        warnings.simplefilter("error")
+        assert c.e(lim * 0.5) == pytest.approx(direct.e_star(lim * 0.5, eps, nu), rel=TOL_E, abs=0)
+    with pytest.warns(ExtrapolationWarning):
+        s = fastrest.scene([(eps, nu), (0.002, 0.3)], v_max=[v_max, 100.0], extrapolate=True)
+    with pytest.warns(ExtrapolationWarning):
+        s.e([v_max, 50.0], [0, 1])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s.e([lim * 0.5, 50.0], [0, 1])
 
 
 def test_extrapolate_not_needed_does_not_warn():

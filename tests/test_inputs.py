@@ -167,3 +167,62 @@ def test_submodules_reachable_after_import_fastrest():
     assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
     with pytest.raises(AttributeError, match="no_such_thing"):
         fastrest.no_such_thing
+
+
+def test_curve_and_scene_inputs_name_the_parameter():
+    with pytest.raises(TypeError, match="eps_y"):
+        fastrest.curve(np.array([0.005, 0.006]), 0.33)
+    with pytest.raises(TypeError, match="v_max"):
+        fastrest.curve(0.005, 0.33, v_max="10")
+    with pytest.raises(ValueError, match=r"materials\[1\].*\(eps_y, nu\) pair"):
+        fastrest.scene([(0.005, 0.33), (0.005,)])
+
+
+@pytest.mark.parametrize("grid, word", [(dict(nu_max=0.5), "nu_max"), (dict(nu_min=-0.1), "nu_min"),
+                                        (dict(eps_y_max="0.02"), "eps_y_max"), (dict(n_nu=6.5), "n_nu"),
+                                        (dict(eps_y_min=0.0), "eps_y_min")])
+def test_bad_grid_rejected(grid, word):
+    with pytest.raises((TypeError, ValueError), match=word):
+        tables.normalise_grid(grid)
+
+
+def test_jit_table_functions_reject_unknown_unloading():
+    """The unloading code indexes the table's quantities: anything but JCG/ETSION is NaN, never a
+    neighbouring quantity's value or a read outside the coefficient array."""
+    import numba
+    from fastrest import jit as frj
+
+    @numba.njit
+    def both(d, u):
+        return frj.e_table(d, 5.0, 0.005, 0.33, u), frj.loss_table(d, 5.0, 0.005, 0.33, u)
+
+    d = fastrest.load_table().data
+    for u in (-1, 2, 3, 10**6, -(10**6)):
+        e, loss = both(d, u)
+        assert math.isnan(e) and math.isnan(loss), u
+    e, loss = both(d, frj.ETSION)
+    assert e == pytest.approx(direct.e_star(5.0, 0.005, 0.33, unloading="etsion"), rel=1e-9)
+    for q in (-1, 5):
+        assert math.isnan(tables.table_value(d, q, 5.0, 0.005, 0.33))
+
+
+def _warning_line(f):
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        f()
+    assert rec, "no warning"
+    return rec[0].filename
+
+
+@pytest.mark.parametrize("call", [
+    lambda: direct.e_star(2000.0, 0.005, 0.33, extrapolate=True),
+    lambda: direct.e_star(5.0, 0.02, 0.33),
+    lambda: steel_impact().e(100.0, extrapolate=True),
+    lambda: fastrest.Impact(fastrest.Material(200e9, 0.1, 1e9, rho=7800), 0.01).e(1.0),
+    lambda: fastrest.scene([(0.02, 0.33)], v_max=10.0),
+    lambda: fastrest.curve(0.02, 0.33, v_max=10.0),
+    lambda: fastrest.models.jgm_fit_jcg(2000.0, 0.005),
+], ids=["direct-extrapolate", "direct-validity", "impact-extrapolate", "impact-validity", "scene",
+        "curve", "fit"])
+def test_warnings_point_at_the_callers_line(call):
+    assert _warning_line(call) == __file__
