@@ -88,3 +88,9 @@ def table_chain(tab, v, eps_y, nu):
     for i in range(v.size):
         x = frj.e_table(tab, v[i] - 1e-9 * x, eps_y[i], nu[i], frj.JCG)
     return x
+
+
+@nb.njit(cache=True)
+def scene_loop(scene, k, v, out):
+    for i in range(v.size):
+        out[i] = frj.e_scene(scene, k[i], v[i])

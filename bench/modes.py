@@ -127,11 +127,15 @@ def multi_material(cfg, log):
     K = cfg["n_materials"]
     ps = point_set(K, cfg["mm_n"] // K, seed=SEED + 3)
     v, e, nu = ps.shuffled(SEED + 4)
+    # the same points as a scene: material index per point
+    perm = np.random.default_rng(SEED + 4).permutation(ps.size)
+    kidx = np.repeat(np.arange(K), np.diff(ps.start))[perm]
+    scn = fastrest.scene(list(zip(ps.eps_m, ps.nu_m)))
     tab = fastrest.load_table()
     o = np.empty(v.size)
     _table_array(tab.data, 1, v, e, nu, o)
     keep = np.isfinite(o)
-    v, e, nu = (np.ascontiguousarray(a[keep]) for a in (v, e, nu))
+    v, e, nu, kidx = (np.ascontiguousarray(a[keep]) for a in (v, e, nu, kidx))
     n = v.size
     o = np.empty(n)
     cases = {
@@ -139,6 +143,8 @@ def multi_material(cfg, log):
         "fastrest.e_star, 1 Numba thread": (with_threads(1, lambda: fastrest.e_star(v, e, nu)), n),
         "e_table loop (jit) throughput": ((lambda: kernels.table_loop(tab.data, v, e, nu, o)), n),
         "e_table chain (jit) latency": ((lambda: kernels.table_chain(tab.data, v, e, nu)), n),
+        "Scene.e (material index per point)": ((lambda: scn.e(v, kidx)), n),
+        "e_scene loop (jit) throughput": ((lambda: kernels.scene_loop(scn.data, kidx, v, o)), n),
         "fit kernel (per-point eps_y)": ((lambda: models.jgm_fit_jcg_kernel(v, e, o)), n),
         "fit latency (jit chain)": ((lambda: kernels.fit_chain_mm(v, e)), n),
     }

@@ -146,6 +146,13 @@ def headline(R):
          f"{ns(mm['e_table loop (jit) throughput']['median_s'])} / {ns(mm['e_table chain (jit) latency']['median_s'])}",
          f"{fmt_ratio(mm['e_table loop (jit) throughput']['ratio_to_ref'])} / "
          f"{fmt_ratio(mm['e_table chain (jit) latency']['ratio_to_ref'])}", "same"],
+        [f"`fastrest.scene(...)`: `Scene.e(v, k)` / `fastrest.jit.e_scene` in your loop, {mm['_n']:.0e} points, "
+         "material index per point",
+         f"{ns(mm['Scene.e (material index per point)']['median_s'])} / "
+         f"{ns(mm['e_scene loop (jit) throughput']['median_s'])} per point",
+         f"{fmt_ratio(mm['Scene.e (material index per point)']['ratio_to_ref'])} / "
+         f"{fmt_ratio(mm['e_scene loop (jit) throughput']['ratio_to_ref'])}", "as `Curve`"]
+        if "Scene.e (material index per point)" in mm else None,
         ["`fastrest.direct.e_star` (exact solver)", f"{fmt_time(by['direct']['time_median'], 'us')}/point",
          fmt_ratio(by["direct"]["ratio"]),
          f"{fmt_err(by['direct']['error'])} (vs 40-digit mpmath)" if by["direct"]["error"] is not None else "reference"],
@@ -158,6 +165,7 @@ def headline(R):
          + (f" (Numba's floor: {fr['first_use']['_numba_floor_s']:.2f} s)"
             if fr["first_use"].get("_numba_floor_s") is not None else ""), "", ""],
     ]
+    rows = [r for r in rows if r is not None]
     met = sum(t["met"] for t in R["targets"])
     head = ["", "time (median)", "x closed-form fit", "worst relative error"]
     caption = (f"{R['machine']['nproc']}-core {R['machine']['cpu']}, {R['date'][:10]}, medians of interleaved rounds; "

@@ -384,14 +384,17 @@ shift are shared. See :func:`fastrest.jit.e_scene`.
 """
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def scene_value(data, what, k, v):
     """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) of material k at V1*; NaN outside its curve."""
-    if not (k >= 0 and k < data.v_max.size):
-        return np.nan
+    # the index check by selects, not an early return: with the branch the caller's loop was
+    # 10x slower (measured 24 ns against 2.5 ns per point in a user's @njit loop)
+    ok = k >= 0 and k < data.v_max.size
+    kk = k if ok else 0
     rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
     # material k's JG rows come after those of materials 0..k-1: shift its base key accordingly
-    return curve_value(rows, data.v_max[k], data.shift, data.base[k] - data.offset[k], what, v)
+    r = curve_value(rows, data.v_max[kk], data.shift, data.base[kk] - data.offset[kk], what, v)
+    return r if ok else np.nan
 
 
 @nb.njit(cache=True)

@@ -27,17 +27,20 @@ from .curve import CurveData, SceneData, e_curve, loss_curve, omega_m_curve, sce
 from .tables import TableData, table_value
 from .unloading import ETSION, JCG
 
+# inline="always": inlined into the caller's loop, the table's arrays are not reference-counted
+# per call (measured: e_table in a user loop 250-310 -> 130 ns per point, as the batch kernel).
+
 __all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "loss_scene", "JCG", "ETSION", "omega_m_curve", "e_curve", "loss_curve",
            "omega_m_table", "e_table", "loss_table"]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def omega_m_table(tab, v1_star, eps_y, nu):
     """w_m* at (V1*, eps_y, nu) from a table's :class:`TableData`; NaN outside its domain."""
     return table_value(tab, 0, v1_star, eps_y, nu)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def e_table(tab, v1_star, eps_y, nu, unloading):
     """e at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1), NaN for any other value.
     NaN outside the table."""
@@ -46,7 +49,7 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
     return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def loss_table(tab, v1_star, eps_y, nu, unloading):
     """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1), NaN for any other value.
     NaN outside the table."""
@@ -55,19 +58,19 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
     return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def omega_m_scene(scene, material, v1_star):
     """w_m* of material index ``material`` of a :class:`fastrest.curve.SceneData`; NaN outside."""
     return scene_value(scene, 0, material, v1_star)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def e_scene(scene, material, v1_star):
     """e of material index ``material`` of a scene at V1*; NaN outside its curve."""
     return scene_value(scene, 1, material, v1_star)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def loss_scene(scene, material, v1_star):
     """1 - e^2 of material index ``material`` of a scene at V1*; NaN outside its curve."""
     return scene_value(scene, 2, material, v1_star)

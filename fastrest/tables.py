@@ -328,28 +328,20 @@ def _first_node(s, m, n):
 
 
 @nb.njit(cache=True, inline="always")
-def _lagrange4(x, x0, inv_h, n):
-    """First index and weights of the 4-node Lagrange stencil at x on a uniform grid."""
-    s = (x - x0) * inv_h
-    i = _first_node(s, 4, n)
-    t = s - i
-    t1, t2, t3 = t - 1.0, t - 2.0, t - 3.0
-    return i, (-t1 * t2 * t3 / 6.0, t * t2 * t3 * 0.5, -t * t1 * t3 * 0.5, t * t1 * t2 / 6.0)
-
-
-@nb.njit(cache=True, inline="always")
 def _lagrange6(x, x0, inv_h, n):
     """First index and weights of the 6-node Lagrange stencil at x on a uniform grid."""
     s = (x - x0) * inv_h
     i = _first_node(s, 6, n)
     t = s - i
     t1, t2, t3, t4, t5 = t - 1.0, t - 2.0, t - 3.0, t - 4.0, t - 5.0
-    return i, (-t1 * t2 * t3 * t4 * t5 / 120.0, t * t2 * t3 * t4 * t5 / 24.0,
-               -t * t1 * t3 * t4 * t5 / 12.0, t * t1 * t2 * t4 * t5 / 12.0,
-               -t * t1 * t2 * t3 * t5 / 24.0, t * t1 * t2 * t3 * t4 / 120.0)
+    # a flat (index, w0..w5) tuple: a nested weights tuple trips Numba's parfor array analysis
+    # when this is inlined into a parallel loop (AssertionError "Dimension mismatch")
+    return (i, -t1 * t2 * t3 * t4 * t5 / 120.0, t * t2 * t3 * t4 * t5 / 24.0,
+            -t * t1 * t3 * t4 * t5 / 12.0, t * t1 * t2 * t4 * t5 / 12.0,
+            -t * t1 * t2 * t3 * t5 / 24.0, t * t1 * t2 * t3 * t4 / 120.0)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def table_value(tab, q, v, eps_y, nu):
     """Quantity q (0 w_m*, 1 e_jcg, 2 loss_jcg, 3 e_etsion, 4 loss_etsion) at (V1*, eps_y, nu).
 
@@ -382,8 +374,10 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
     b = tab.cell_block[cell]
     n = tab.block_n[b]
-    i, we = _lagrange6(xi, tab.xi0, tab.block_inv_h[b], n)
-    j, wn = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, tab.xi0, tab.block_inv_h[b], n)
+    j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    we = (e0, e1, e2, e3, e4, e5)
+    wn = (n0, n1, n2, n3, n4, n5)
     row = 6 * tab.n_nu  # one eps_y node's coefficients
     first = tab.block_offset[b] + ((cell - tab.block_cell0[b]) * n + i) * row + 6 * j
     w_lim = OMEGA_LIMIT
