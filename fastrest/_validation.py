@@ -27,7 +27,7 @@ class ExtrapolationWarning(ValidityWarning):
     """A result was extrapolated past w_m* = 425 at the caller's request (``extrapolate=True``)."""
 
 
-_NOT_REAL = (str, bytes, bool, np.bool_)
+_NOT_REAL = (str, bytes, bytearray, memoryview, bool, np.bool_)
 
 
 def _type_error(name, x):
@@ -43,6 +43,8 @@ def as_float_array(x, name):
     """
     if x is None or isinstance(x, _NOT_REAL):
         raise _type_error(name, x)
+    if isinstance(x, (list, tuple)) and any(el is None or isinstance(el, _NOT_REAL) for el in x):
+        raise _type_error(name, x)  # NumPy would read [1.0, True] as [1.0, 1.0]
     try:
         a = np.asarray(x)
     except (TypeError, ValueError) as exc:  # e.g. ragged nested lists

@@ -48,7 +48,7 @@ def _cmd_e(args):
     crit = imp.critical_values()
     V = np.asarray(args.V, dtype=float)
     try:
-        v1 = imp.v1_star(V, args.extrapolate)
+        v1 = imp.v1_star(V, args.extrapolate, "jcg")  # both models are printed; JCG ends first
     except ValueError as exc:
         msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
         raise ValueError(f"--V: {msg}") from None

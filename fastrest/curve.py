@@ -16,7 +16,6 @@ form in the way libm implements exp, not an approximation of the model.
 The curve's data is a :class:`CurveData` namedtuple of scalars and arrays: pass it to the
 ``@njit`` functions of :mod:`fastrest.jit` from your own Numba code.
 """
-import functools
 import math
 from collections import namedtuple
 
@@ -25,7 +24,7 @@ import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
-from .direct import raise_out_of_range, v1_star_limit, w_upper
+from .direct import raise_out_of_range, v1_star_limit, v1_star_limit_model, w_upper_model
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
 from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits
@@ -194,12 +193,12 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     array of w_m*, e and 1 - e^2 at the speeds v (used by bench/ to build a curve from a table).
     """
     model = unloading_code(unloading)
-    w_hi = w_upper(eps_y, nu, extrapolate)
-    limit = v1_star_limit(eps_y, nu, extrapolate)
+    w_hi = w_upper_model(eps_y, nu, extrapolate, model)
+    limit = v1_star_limit_model(eps_y, nu, extrapolate, model)
     if v_max is None:
         v_max = limit
     elif v_max > limit:
-        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max")
+        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", model)
     shift = MANTISSA_BITS - bits_per_octave
     hertz = hertz_rows(model)
     if v_max <= V_SWITCH:  # closed forms only
@@ -256,20 +255,6 @@ class Curve:
         self._packed = [_pack(data, what, rows)
                         for what, rows in enumerate((data.omega_rows, data.e_rows, data.loss_rows))]
         self._entry = _scalar_entry()
-        if self.v_limit < self.v_max:
-            # only extrapolated curves pay for the check: wrap their methods per instance
-            for name in ("omega_m", "e", "loss"):
-                setattr(self, name, self._warning_past_limit(getattr(self, name)))
-
-    def _warning_past_limit(self, method):
-        @functools.wraps(method)
-        def checked(v1_star):
-            out = method(v1_star)
-            if np.any(np.asarray(v1_star, dtype=np.float64) > self.v_limit):
-                warn(f"V1* past {self.v_limit:.6g} (w_m* = {OMEGA_M_STAR_MAX:g}): extrapolated, the JG law "
-                     "is not validated there", ExtrapolationWarning)
-            return out
-        return checked
 
     def __repr__(self):
         return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
@@ -313,6 +298,33 @@ class Curve:
             if r == r:
                 return r
         return self._eval(2, v1_star)
+
+
+class _ExtrapolatedCurve(Curve):
+    """A :class:`Curve` built with ``extrapolate=True`` past w_m* = 425: every evaluation past
+    ``v_limit`` warns (a subclass, so curves that do not extrapolate pay nothing for the check)."""
+
+    def _check(self, v1_star):
+        past = (v1_star > self.v_limit if type(v1_star) is float
+                else np.any(np.asarray(v1_star, dtype=np.float64) > self.v_limit))
+        if past:
+            warn(f"V1* past {self.v_limit:.6g} (w_m* = {OMEGA_M_STAR_MAX:g}): extrapolated, the JG law "
+                 "is not validated there", ExtrapolationWarning)
+
+    def omega_m(self, v1_star):
+        out = Curve.omega_m(self, v1_star)
+        self._check(v1_star)
+        return out
+
+    def e(self, v1_star):
+        out = Curve.e(self, v1_star)
+        self._check(v1_star)
+        return out
+
+    def loss(self, v1_star):
+        out = Curve.loss(self, v1_star)
+        self._check(v1_star)
+        return out
 
 
 def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
@@ -365,7 +377,7 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
         v_max = float(check_velocity(real_scalar(v_max, "v_max"), "v_max"))
     warn_if_outside_validated(eps_y, nu)
     data = build_curve_data(eps_y, nu, unloading, v_max, extrapolate)
-    c = Curve(eps_y, nu, unloading, data)
+    c = (_ExtrapolatedCurve if v1_star_limit(eps_y, nu) < data.v_max else Curve)(eps_y, nu, unloading, data)
     if c.v_limit < data.v_max:
         warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (V1* = {c.v_limit:.6g}) to "
              f"V1* = {data.v_max:.6g}: extrapolated there; evaluations past it warn too", ExtrapolationWarning)
@@ -390,7 +402,7 @@ def scene_value(data, what, k, v):
     # the index check by selects, not an early return: with the branch the caller's loop was
     # 10x slower (measured 24 ns against 2.5 ns per point in a user's @njit loop)
     ok = k >= 0 and k < data.v_max.size
-    kk = k if ok else 0
+    kk = k if ok else k - k  # 0 of k's own integer type (a literal 0 would unify uint64 to float)
     rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
     # material k's JG rows come after those of materials 0..k-1: shift its base key accordingly
     r = curve_value(rows, data.v_max[kk], data.shift, data.base[kk] - data.offset[kk], what, v)

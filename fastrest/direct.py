@@ -21,7 +21,7 @@ from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_eps_y, c
                           check_velocity, warn, warn_if_outside_validated)
 from .contact import broadcast_inputs, omega_star_limit_kernel, shaped
 from .energy import V_SWITCH, f_star_kernel, omega_m_kernel
-from .unloading import restitution_kernel, unloading_code
+from .unloading import ETSION, JCG, JCG_OMEGA_END, restitution_kernel, unloading_code
 
 
 @nb.njit(cache=True)
@@ -34,9 +34,16 @@ def w_upper(eps_y, nu, extrapolate):
 
 
 @nb.njit(cache=True)
+def w_upper_model(eps_y, nu, extrapolate, model):
+    """:func:`w_upper`, and for JCG unloading no further than eq (35) is defined (w_res <= w_m)."""
+    w = w_upper(eps_y, nu, extrapolate)
+    return min(w, JCG_OMEGA_END) if model == JCG else w
+
+
+@nb.njit(cache=True)
 def impact_kernel(v, eps_y, nu, model, extrapolate):
     """(w_m*, e, 1 - e^2, w_res*, R_res/R) for one impact; NaNs outside the domain."""
-    w_hi = w_upper(eps_y, nu, extrapolate)
+    w_hi = w_upper_model(eps_y, nu, extrapolate, model)
     wm = omega_m_kernel(v, eps_y, nu, w_hi)
     if not wm >= 0.0:
         return np.nan, np.nan, np.nan, np.nan, np.nan
@@ -70,7 +77,7 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     impact_array(v, eps_y, nu, model, bool(extrapolate), out)
     bad = np.isnan(out[0])
     if np.any(bad):
-        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate)
+        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate, model=model)
     if extrapolate and np.any(out[0] > OMEGA_M_STAR_MAX):
         warn(f"extrapolated past w_m* = {OMEGA_M_STAR_MAX:g}, the largest interference "
              "JGM computed; the JG law is not validated there", ExtrapolationWarning)
@@ -83,12 +90,24 @@ def v1_star_limit(eps_y, nu, extrapolate=False):
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
 
 
-def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star"):
+def v1_star_limit_model(eps_y, nu, extrapolate, model):
+    """:func:`v1_star_limit` for an unloading model (JCG: also where eq 35 ends)."""
+    w = w_upper_model(float(eps_y), float(nu), bool(extrapolate), model)
+    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
+
+
+def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", model=ETSION):
     """Raise the ValueError for the first impact whose w_m* is beyond the allowed range.
 
     ``name`` is the caller's parameter the speed came from (e.g. ``v_max``)."""
     v, e, n = float(v[0]), float(eps_y[0]), float(nu[0])
     w_ar = omega_star_limit_kernel(e, n)
+    if extrapolate and model == JCG and JCG_OMEGA_END < w_ar and v > v1_star_limit_model(e, n, True, JCG):
+        raise ValueError(
+            f"{name} = {v!r} is past the end of JCG unloading (eq 35) for eps_y = {e!r}, nu = {n!r}: "
+            f"its w_res/w_m reaches 1 at w_m* = {JCG_OMEGA_END:.6g}, i.e. V1* = "
+            f"{v1_star_limit_model(e, n, True, JCG):.10g}, and e is undefined beyond (extrapolated "
+            "far past the paper's w_m* = 425; unloading='etsion' goes on to a/R = 1)")
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
         raise ValueError(
             f"{name} = {v!r} is past the end of the Jackson-Green law for eps_y = {e!r}, nu = {n!r}: "
@@ -119,7 +138,8 @@ def omega_m_star(v1_star, eps_y, nu, extrapolate=False):
     float or ndarray
         w_m* (-), broadcast over the inputs.
     """
-    out, shape = _solve(v1_star, eps_y, nu, "jcg", extrapolate)
+    # w_m* does not depend on the unloading model; Etsion's is defined wherever w_m* is
+    out, shape = _solve(v1_star, eps_y, nu, "etsion", extrapolate)
     return shaped(out[0], shape)
 
 

@@ -148,9 +148,12 @@ def _normalise_blocks(blocks):
     increasing) use n nodes in the mapped C(nu) eps_y (>= the stencil's 6); the rest n_eps_y."""
     out = []
     try:
-        pairs = [(float(v), int(n)) for v, n in (blocks or [])]
+        pairs = [(float(v), float(n)) for v, n in (blocks or [])]
     except (TypeError, ValueError):
         raise ValueError(f"eps_y_blocks must be a list of [V1*_end, n_eps_y] pairs; got {blocks!r}") from None
+    if not all(n.is_integer() for _, n in pairs):
+        raise ValueError(f"eps_y_blocks: node counts must be whole numbers; got {blocks!r}")
+    pairs = [(v, int(n)) for v, n in pairs]
     for v, n in pairs:
         if not (math.frexp(v)[0] == 0.5 and 2.0 <= v <= 2.0**20) or (out and v <= out[-1][0]):
             raise ValueError(f"eps_y_blocks: each V1*_end must be a power of two in [2, 2^20], increasing; got {v}")

@@ -24,6 +24,9 @@ from .contact import W_SWITCH, a_star_kernel, p_star_unchecked
 
 UNLOADING_MODELS = ("jcg", "etsion")
 JCG, ETSION = 0, 1
+#: JCG eq (35), w_res/w_m = 1.02 (1 - (1 + (w_m - 1)/6.9)^-0.54), reaches 1 at this w_m*: past it
+#: w_res > w_m and e is undefined. Only extrapolation (w_m* > 425) gets there.
+JCG_OMEGA_END = 1.0 + 6.9 * ((1.0 - 1.0 / 1.02) ** (-1.0 / 0.54) - 1.0)
 
 
 def unloading_code(unloading):
@@ -66,6 +69,10 @@ def restitution_kernel(v, wm, wm1, eps_y, nu, model):
             loss = (1.0 - q) + q * r
             e2 = q * (1.0 - r)
         elastic = wm - w_res
+        if elastic <= 0.0:
+            # the end of eq (35), w_m* = JCG_OMEGA_END (callers stop there): e = 0, flat residual
+            # shape; a negative value here is rounding
+            return 0.0, 1.0, wm, np.inf
     else:
         elastic = p / math.sqrt(a_star_kernel(wm, eps_y, nu))
         w_res = wm - elastic

@@ -142,7 +142,7 @@ def test_e_errors_name_the_flags(capsys):
     imp = readme_impact()
     v = imp.V_max() * 2
     code, out, err = run(README_ARGS[:README_ARGS.index("--V")] + ["--V", repr(v)], capsys)
-    assert code == 2 and "--V" in err and f"{imp.V_max():.6g} m/s" in err
+    assert code == 2 and "--V" in err and f"{imp.V_max():.10g} m/s" in err
     code, out, err = run(README_ARGS + ["--flat-E", "70e9"], capsys)
     assert code == 2 and "--flat-nu" in err
     code, out, err = run(README_ARGS + ["--flat-Sy", "1e8"], capsys)
