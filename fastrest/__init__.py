@@ -24,10 +24,9 @@ __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material",
            "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
            "omega_m_star", "e_star", "loss_star", "TableFileError"]
 
-# Submodules not needed by the core API load on first attribute access (fastrest.models, ...),
+# Submodules the imports above do not load come on first attribute access (fastrest.models, ...),
 # keeping `import fastrest` fast.
-_LAZY = ("models", "rough", "figures", "forward", "jit", "tables", "curve", "cli", "unloading", "energy",
-         "contact", "materials", "interpolation")
+_LAZY = ("models", "rough", "figures", "forward", "jit", "cli")
 
 
 def __getattr__(name):

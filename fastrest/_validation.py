@@ -30,6 +30,10 @@ class ExtrapolationWarning(ValidityWarning):
 _NOT_REAL = (str, bytes, bytearray, memoryview, bool, np.bool_)
 
 
+def _any_not_real(items):
+    return any(el is None or isinstance(el, _NOT_REAL) for el in items)
+
+
 def _type_error(name, x):
     return TypeError(f"{name} must be a real number or array of real numbers, got {x!r} "
                      f"({type(x).__name__})")
@@ -43,7 +47,7 @@ def as_float_array(x, name):
     """
     if x is None or isinstance(x, _NOT_REAL):
         raise _type_error(name, x)
-    if isinstance(x, (list, tuple)) and any(el is None or isinstance(el, _NOT_REAL) for el in x):
+    if isinstance(x, (list, tuple)) and _any_not_real(x):
         raise _type_error(name, x)  # NumPy would read [1.0, True] as [1.0, 1.0]
     try:
         a = np.asarray(x)
@@ -51,7 +55,7 @@ def as_float_array(x, name):
         raise _type_error(name, x) from exc
     kind = a.dtype.kind
     if kind == "O":
-        if any(el is None or isinstance(el, _NOT_REAL) for el in a.flat):
+        if _any_not_real(a.flat):
             raise _type_error(name, x)
         try:
             return a.astype(np.float64)

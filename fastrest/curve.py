@@ -24,7 +24,7 @@ import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
-from .direct import raise_out_of_range, v1_star_limit, v1_star_limit_model, w_upper_model
+from .direct import raise_out_of_range, v1_star_limit, w_upper_model
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
 from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits
@@ -194,7 +194,7 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     """
     model = unloading_code(unloading)
     w_hi = w_upper_model(eps_y, nu, extrapolate, model)
-    limit = v1_star_limit_model(eps_y, nu, extrapolate, model)
+    limit = v1_star_limit(eps_y, nu, extrapolate, model)
     if v_max is None:
         v_max = limit
     elif v_max > limit:

@@ -84,39 +84,45 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     return out, shape
 
 
-def v1_star_limit(eps_y, nu, extrapolate=False):
-    """Largest V1* the model accepts for one material: w_m* = 425 or, extrapolating, a/R = 1."""
-    w = w_upper(float(eps_y), float(nu), bool(extrapolate))
-    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
-
-
-def v1_star_limit_model(eps_y, nu, extrapolate, model):
-    """:func:`v1_star_limit` for an unloading model (JCG: also where eq 35 ends)."""
+def v1_star_limit(eps_y, nu, extrapolate=False, model=ETSION):
+    """Largest V1* the model accepts for one material: w_m* = 425 or, extrapolating, a/R = 1
+    (for JCG unloading, ``model=JCG``, also no further than eq 35 is defined)."""
     w = w_upper_model(float(eps_y), float(nu), bool(extrapolate), model)
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
 
 
-def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", model=ETSION):
+_EXTRAPOLATE_HINT = "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas"
+
+
+def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", model=ETSION, V_c=None,
+                       hint=_EXTRAPOLATE_HINT):
     """Raise the ValueError for the first impact whose w_m* is beyond the allowed range.
 
-    ``name`` is the caller's parameter the speed came from (e.g. ``v_max``)."""
+    The one place that says which limit applies (w_m* = 425, a/R = 1, the end of JCG's eq 35).
+    ``v``: the speeds in the caller's unit, V1* or, with ``V_c`` (m/s), V1 in m/s; ``name`` is
+    the caller's parameter they came from (e.g. ``v_max``); ``hint`` ends the w_m* = 425 message."""
     v, e, n = float(v[0]), float(eps_y[0]), float(nu[0])
+    lead = f"{name} = {v!r}" if V_c is None else f"{name} = {v!r} m/s"
+
+    def at(v_star):
+        return f"V1* = {v_star:.10g}" if V_c is None else f"V1 = {v_star * V_c:.10g} m/s (V1* = {v_star:.6g})"
+
     w_ar = omega_star_limit_kernel(e, n)
-    if extrapolate and model == JCG and JCG_OMEGA_END < w_ar and v > v1_star_limit_model(e, n, True, JCG):
-        raise ValueError(
-            f"{name} = {v!r} is past the end of JCG unloading (eq 35) for eps_y = {e!r}, nu = {n!r}: "
-            f"its w_res/w_m reaches 1 at w_m* = {JCG_OMEGA_END:.6g}, i.e. V1* = "
-            f"{v1_star_limit_model(e, n, True, JCG):.10g}, and e is undefined beyond (extrapolated "
-            "far past the paper's w_m* = 425; unloading='etsion' goes on to a/R = 1)")
+    if extrapolate and model == JCG and JCG_OMEGA_END < w_ar:
+        lim = v1_star_limit(e, n, True, JCG)
+        if (v if V_c is None else v / V_c) > lim:
+            raise ValueError(
+                f"{lead} is past the end of JCG unloading (eq 35) for eps_y = {e!r}, nu = {n!r}: "
+                f"its w_res/w_m reaches 1 at w_m* = {JCG_OMEGA_END:.6g}, i.e. {at(lim)}, and e is "
+                "undefined beyond (extrapolated far past the paper's w_m* = 425; unloading='etsion' "
+                "goes on to a/R = 1)")
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
         raise ValueError(
-            f"{name} = {v!r} is past the end of the Jackson-Green law for eps_y = {e!r}, nu = {n!r}: "
-            f"a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. V1* = {v1_star_limit(e, n, True):.10g} "
-            "(eq 12 needs 0 < a/R < 1)")
+            f"{lead} is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {e!r}, "
+            f"nu = {n!r}: a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. {at(v1_star_limit(e, n, True))}")
     raise ValueError(
-        f"{name} = {v!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
-        f"for eps_y = {e!r}, nu = {n!r} that limit is V1* = {v1_star_limit(e, n):.10g}. "
-        "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas")
+        f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
+        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(v1_star_limit(e, n))}. {hint}")
 
 
 def omega_m_star(v1_star, eps_y, nu, extrapolate=False):

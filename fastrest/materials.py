@@ -267,10 +267,10 @@ class Impact:
         """Largest impact speed the model accepts (m/s): w_m* = 425 (JGM section 3.3), or with
         ``extrapolate=True`` where the contact radius reaches the sphere's (a/R = 1, eq 12) or,
         for JCG unloading, where eq (35) ends (w_res = w_m, at w_m* = 10017.5) if that comes first."""
-        from .direct import v1_star_limit_model
+        from .direct import v1_star_limit
         from .unloading import unloading_code
 
-        return v1_star_limit_model(self.eps_y, self.nu, extrapolate, unloading_code(unloading)) * self.V_c
+        return v1_star_limit(self.eps_y, self.nu, extrapolate, unloading_code(unloading)) * self.V_c
 
     def v1_star(self, V1, extrapolate=False, unloading=None):
         """V1* = V1/V_c (-) for impact speeds V1 (m/s), eq (28); ValueError in m/s outside the domain.
@@ -278,32 +278,17 @@ class Impact:
         ``unloading`` ("jcg" or "etsion") matters only extrapolating: JCG's eq (35) ends before
         a/R = 1 (see :meth:`V_max`). None: the contact law's own limit.
         """
-        from ._validation import OMEGA_M_STAR_MAX, check_velocity
-        from .contact import omega_star_limit_kernel
-        from .direct import v1_star_limit, v1_star_limit_model
-        from .unloading import ETSION, JCG, JCG_OMEGA_END, unloading_code
+        from ._validation import check_velocity
+        from .direct import raise_out_of_range, v1_star_limit
+        from .unloading import ETSION, unloading_code
 
         model = ETSION if unloading is None else unloading_code(unloading)
         V = check_velocity(V1, "V1", "(m/s)")
         v = V / self.V_c
-        lim = v1_star_limit_model(self.eps_y, self.nu, extrapolate, model)
         # a few ulp of slack: V_max() itself (lim * V_c / V_c) must pass; the solver decides there
-        over = v > lim * (1.0 + 1e-12)
+        over = v > v1_star_limit(self.eps_y, self.nu, extrapolate, model) * (1.0 + 1e-12)
         if np.any(over):
-            bad = float(V[over].flat[0] if V.ndim else V)
-            w_ar = omega_star_limit_kernel(self.eps_y, self.nu)
-            if extrapolate and model == JCG and lim < v1_star_limit(self.eps_y, self.nu, True):
-                raise ValueError(f"V1 = {bad!r} m/s is past the end of JCG unloading (eq 35) for this impact: "
-                                 f"w_res reaches w_m at w_m* = {JCG_OMEGA_END:.6g}, V1 = {lim * self.V_c:.10g} "
-                                 "m/s, and e is undefined beyond; unloading='etsion' goes on to a/R = 1")
-            if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
-                raise ValueError(f"V1 = {bad!r} m/s is past the end of the Jackson-Green law for this impact: "
-                                 f"the contact radius reaches the sphere's (a/R = 1, eq 12) at "
-                                 f"V1 = {lim * self.V_c:.10g} m/s (w_m* = {w_ar:.6g})")
-            raise ValueError(f"V1 = {bad!r} m/s gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit "
-                             f"(JGM section 3.3); for this impact that limit is V1 = {lim * self.V_c:.10g} m/s "
-                             f"(V1* = {lim:.6g}, V_c = {self.V_c:.6g} m/s). Pass extrapolate=True to "
-                             "compute beyond it (up to a/R = 1) with the same formulas")
+            raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", model, V_c=self.V_c)
         return v
 
     def omega_m(self, V1, extrapolate=False):

@@ -33,7 +33,7 @@ from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
 from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
-from .direct import impact_array, v1_star_limit
+from .direct import impact_array, raise_out_of_range, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
 from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, chebyshev_nodes, fma,
                             two_level_cells, two_level_index, values_to_coeffs)
@@ -546,16 +546,9 @@ class Table:
                                  "(use fastrest.direct, fastrest.curve, or build a wider table)")
         v0, e0, n0 = float(v[0]), float(e[0]), float(n[0])
         lim = v1_star_limit(e0, n0)
-        w_ar = omega_star_limit_kernel(e0, n0)
-        if v0 > lim and w_ar <= OMEGA_M_STAR_MAX:
-            # large eps_y: the JG law ends (a/R = 1) before w_m* = 425
-            raise ValueError(f"v1_star = {v0!r} is past the end of the Jackson-Green law for eps_y = {e0!r}, "
-                             f"nu = {n0!r}: a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. V1* = {lim:.10g} "
-                             "(eq 12 needs 0 < a/R < 1)")
         if v0 > lim:
-            raise ValueError(f"v1_star = {v0!r} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit "
-                             f"(JGM section 3.3); for eps_y = {e0!r}, nu = {n0!r} that limit is "
-                             f"V1* = {lim:.10g}. fastrest.direct and fastrest.curve accept extrapolate=True")
+            raise_out_of_range(v, e, n, False,
+                               hint="fastrest.direct and fastrest.curve accept extrapolate=True")
         raise ValueError(f"v1_star = {v0!r} at eps_y = {e0!r}, nu = {n0!r} lies within the interpolation "
                          f"error of the w_m* = {OMEGA_M_STAR_MAX:g} limit (V1* = {lim:.10g}) or outside "
                          "this table's coverage")
