@@ -1,10 +1,12 @@
 """fastrest: the Jackson-Green-Marghitu (2010) coefficient of restitution, fast.
 
 Data flow: :mod:`~fastrest.materials` (material -> critical values, eqs 4-7, 23-28) ->
-:mod:`~fastrest.contact` (normalised JG law, eqs 8-15) -> :mod:`~fastrest.energy` (W*, w_m*,
-eqs 22-31) -> :mod:`~fastrest.unloading` (eqs 32-38) -> :mod:`~fastrest.direct` (exact solver) ->
+:mod:`~fastrest.critical` (the same in Numba code) -> :mod:`~fastrest.contact` (normalised JG law,
+eqs 8-15) -> :mod:`~fastrest.energy` (W*, w_m*, eqs 22-31) -> :mod:`~fastrest.unloading` (one unit
+per unloading model, eqs 32-38) -> :mod:`~fastrest.limits` (where the model ends) -> :mod:`~fastrest.direct` (exact solver) ->
 :mod:`~fastrest.curve` and :mod:`~fastrest.tables` (fast paths) -> :mod:`~fastrest.jit` (inside
-your own Numba code). Comparison models: :mod:`~fastrest.models`; rough surfaces:
+your own Numba code); :mod:`~fastrest.force_law` (the contact law in the time domain, with
+history, for DEM and transient codes). Comparison models: :mod:`~fastrest.models`; rough surfaces:
 :mod:`~fastrest.rough`; the paper's figures: :mod:`~fastrest.figures`.
 """
 import importlib
@@ -18,11 +20,12 @@ from . import direct
 from .curve import Curve, curve, Scene, scene
 from .tables import Table, load_table, omega_m_star, e_star, loss_star
 from ._hdf5 import TableFileError
+from .force_law import ContactLaw, contact_law
 
 __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",
            "poisson_factor", "critical_velocity_ratios", "P_star", "A_star", "W_star",
            "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
-           "omega_m_star", "e_star", "loss_star", "TableFileError"]
+           "omega_m_star", "e_star", "loss_star", "TableFileError", "ContactLaw", "contact_law"]
 
 # Submodules the imports above do not load come on first attribute access (fastrest.models, ...),
 # keeping `import fastrest` fast.

@@ -32,6 +32,7 @@ def _cmd_e(args):
     from . import models
     from ._validation import ValidityWarning
     from .materials import Impact, Material
+    from .unloading import MODELS, NAMES
 
     names = _model_names(args.models)
     if args.rho is None and args.mass is None:
@@ -48,19 +49,23 @@ def _cmd_e(args):
     crit = imp.critical_values()
     V = np.asarray(args.V, dtype=float)
     try:
-        v1 = imp.v1_star(V, args.extrapolate, "jcg")  # both models are printed; JCG ends first
+        v1 = imp.v1_star(V, args.extrapolate, "jcg")  # every model is printed; JCG ends first
     except ValueError as exc:
         msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
         raise ValueError(f"--V: {msg}") from None
     with warnings.catch_warnings(record=True) as caught:
         # record the model's own warnings (validity, extrapolation) for the output; others pass through
         warnings.simplefilter("always", ValidityWarning)
-        jcg = direct.solve(v1, imp.eps_y, imp.nu, "jcg", extrapolate=args.extrapolate)
-        ets = direct.solve(v1, imp.eps_y, imp.nu, "etsion", extrapolate=args.extrapolate)
+        sols = {m: direct.solve(v1, imp.eps_y, imp.nu, m, extrapolate=args.extrapolate) for m in NAMES}
         others = {n: np.atleast_1d(models.evaluate(n, imp, V)) for n in names}
-    rows = [{"V": float(a), "V1_star": float(b), "omega_m_star": float(c), "e_jcg": float(d),
-             "e_etsion": float(f), "V2_jcg": float(a * d), "V2_etsion": float(a * f)}
-            for a, b, c, d, f in zip(V, v1, jcg["omega_m_star"], jcg["e"], ets["e"])]
+    rows = [{"V": float(a), "V1_star": float(b),
+             "omega_m_star": float(np.atleast_1d(sols[NAMES[0]]["omega_m_star"])[i])} for i, (a, b) in enumerate(zip(V, v1))]
+    for m in NAMES:
+        for r, e in zip(rows, np.atleast_1d(sols[m]["e"])):
+            r["e_" + m] = float(e)
+    for m in NAMES:
+        for r in rows:
+            r["V2_" + m] = r["V"] * r["e_" + m]
     for n, vals in others.items():
         for r, x in zip(rows, vals):
             r["e_" + n] = float(x)
@@ -88,11 +93,12 @@ def _cmd_e(args):
     print()
     widths = {n: max(10, len(n) + 4) for n in names}
     extra_head = "".join(f" {'e (' + n + ')':>{widths[n]}s}" for n in names)
-    print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s} {'e (JCG)':>10s} {'e (Etsion)':>10s}{extra_head}")
+    heads = "".join(f" {'e (' + MODELS[m].short + ')':>11s}" for m in NAMES)
+    print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s}{heads}{extra_head}")
     for r in rows:
         extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" for n in names)
-        print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g} {r['e_jcg']:10.6f} "
-              f"{r['e_etsion']:10.6f}{extra}")
+        cols = "".join(f" {r['e_' + m]:11.6f}" for m in NAMES)
+        print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g}{cols}{extra}")
     if names:
         print("  comparison models: fastrest.models.evaluate (see docs/model.md); values are the "
               "published formulas, not clipped to e <= 1")

@@ -20,15 +20,10 @@ import numba as nb
 import numpy as np
 
 from ._validation import OMEGA_STAR_SWITCH, check_eps_y, check_nu, as_float_array
+from .critical import c_of_nu
 
 W_SWITCH = OMEGA_STAR_SWITCH
 LN_SWITCH = math.log(W_SWITCH)
-
-
-@nb.njit(cache=True)
-def c_of_nu(nu):
-    """C(nu), JGM eq (5)."""
-    return 1.295 * math.exp(0.736 * nu)
 
 
 @nb.njit(cache=True)
@@ -139,11 +134,10 @@ def check_omega(w, eps_y, nu, name="w"):
     lim = np.array([omega_star_limit_kernel(e, n) for e, n in zip(eps_y, nu)]) if w.size else w
     past = w >= lim
     if np.any(past):
+        from .limits import raise_interference_out_of_range  # limits builds on this module
+
         i = int(np.flatnonzero(past)[0])
-        raise ValueError(
-            f"{name} = {float(w[i])!r} is past the end of the Jackson-Green law: a/R reaches 1 at "
-            f"w* = {lim[i]:.6g} for eps_y = {float(eps_y[i])!r}, nu = {float(nu[i])!r} "
-            "(eq 12 needs 0 < a/R < 1)")
+        raise_interference_out_of_range(w[i], eps_y[i], nu[i], True, name)
 
 
 def evaluate_law(kernel, w, eps_y, nu):

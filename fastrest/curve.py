@@ -24,11 +24,11 @@ import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
-from .direct import raise_out_of_range, v1_star_limit, w_upper_model
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
 from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits
-from .unloading import ETSION, jcg_residual_ratio, restitution_kernel, unloading_code
+from .limits import raise_out_of_range, v1_star_limit, w_upper_model
+from . import unloading as _unloading
 
 #: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-14 on e and w_m* (bench/, section 1).
 BITS_PER_OCTAVE = 5
@@ -48,15 +48,16 @@ the JG cells from 1.9^1.25 to v_max.
 
 @nb.njit(cache=True)
 def closed_form(v, model):
-    """(w_m*, e, 1 - e^2) for 0 <= v <= 1.9^1.25 (Hertz loading), exact (JGM eqs 19, 33, 35)."""
+    """(w_m*, e, 1 - e^2) for 0 <= v <= 1.9^1.25 (Hertz loading), exact (JGM eqs 19, 38 and the
+    unloading model's residual). The same for every material: under Hertz loading P_m* = w_m*^1.5
+    and every registered unloading model's w_res* depends on w_m* alone (tests/test_unloading.py)."""
     if v <= 1.0:
         return v**0.8, 1.0, 0.0
     lv = math.log(v)
     w = min(math.exp(0.8 * lv), W_SWITCH)
-    if model == ETSION:
-        return w, 1.0, 0.0
-    r = jcg_residual_ratio(math.expm1(0.8 * lv))
-    return w, math.sqrt(1.0 - r), r
+    # eps_y and nu are not read under Hertz loading: NaN would show if a model did
+    e2, loss, _, _, _ = _unloading.restitution(model, v * v, w, math.expm1(0.8 * lv), w**1.5, np.nan, np.nan)
+    return w, math.sqrt(e2), loss
 
 
 @nb.njit(cache=True)
@@ -192,13 +193,13 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     ``jg_values(v)``, if given, replaces the direct solver above 1.9^1.25: it returns the (3, n)
     array of w_m*, e and 1 - e^2 at the speeds v (used by bench/ to build a curve from a table).
     """
-    model = unloading_code(unloading)
+    model = _unloading.get(unloading).code
     w_hi = w_upper_model(eps_y, nu, extrapolate, model)
-    limit = v1_star_limit(eps_y, nu, extrapolate, model)
+    limit = v1_star_limit(eps_y, nu, extrapolate, unloading)
     if v_max is None:
         v_max = limit
     elif v_max > limit:
-        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", model)
+        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading)
     shift = MANTISSA_BITS - bits_per_octave
     hertz = hertz_rows(model)
     if v_max <= V_SWITCH:  # closed forms only
@@ -222,7 +223,7 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
 def _restitution_at(v, w, eps_y, nu, model):
     out = np.empty((2, v.size))
     for i in range(v.size):
-        e, loss, _, _ = restitution_kernel(v[i], w[i], w[i] - 1.0, eps_y, nu, model)
+        e, loss, _, _ = _unloading.restitution_kernel(v[i], w[i], w[i] - 1.0, eps_y, nu, model)
         out[0, i] = e
         out[1, i] = loss
     return out
@@ -336,8 +337,8 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
         Sy/E' (-), > 0; validated range 0.0005-0.01 (outside: ValidityWarning).
     nu : float
         Poisson's ratio of the yielding material, 0 <= nu < 0.5 (validated 0.2-0.45).
-    unloading : {"jcg", "etsion"}
-        Residual-interference model, JGM eq (35) or (33).
+    unloading : {"jcg", "etsion", "brake"}
+        Residual-interference model, JGM eq (35), (33) or Brake's (:mod:`fastrest.unloading`).
     v_max : float, optional
         Largest V1* = V1/V_c needed (-). Default: the model's limit, w_m* = 425. A larger value
         raises ValueError naming the limit.
@@ -497,7 +498,7 @@ def scene(materials, unloading="jcg", v_max=None, extrapolate=False):
     ----------
     materials : sequence of (eps_y, nu)
         Material parameters (-) of each material index 0, 1, ...
-    unloading : {"jcg", "etsion"}
+    unloading : {"jcg", "etsion", "brake"}
     v_max : float or sequence, optional
         Largest V1* needed, for all materials or per material (default: each material's w_m* = 425).
     """

@@ -19,25 +19,13 @@ import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_eps_y, check_nu,
                           check_velocity, warn, warn_if_outside_validated)
-from .contact import broadcast_inputs, omega_star_limit_kernel, shaped
-from .energy import V_SWITCH, f_star_kernel, omega_m_kernel
-from .unloading import ETSION, JCG, JCG_OMEGA_END, restitution_kernel, unloading_code
+from .contact import broadcast_inputs, shaped
+from .energy import V_SWITCH, omega_m_kernel
+from .limits import raise_out_of_range, v1_star_limit, w_upper_model
+from .unloading import get as unloading_model, restitution_kernel
 
-
-@nb.njit(cache=True)
-def w_upper(eps_y, nu, extrapolate):
-    """Largest w_m* allowed: 425, or with extrapolation the point where a/R = 1."""
-    lim = omega_star_limit_kernel(eps_y, nu)
-    if extrapolate:
-        return lim
-    return min(OMEGA_M_STAR_MAX, lim)
-
-
-@nb.njit(cache=True)
-def w_upper_model(eps_y, nu, extrapolate, model):
-    """:func:`w_upper`, and for JCG unloading no further than eq (35) is defined (w_res <= w_m)."""
-    w = w_upper(eps_y, nu, extrapolate)
-    return min(w, JCG_OMEGA_END) if model == JCG else w
+__all__ = ["omega_m_star", "e_star", "loss_star", "residual_star", "solve", "v1_star_limit",
+           "impact_kernel", "impact_array"]
 
 
 @nb.njit(cache=True)
@@ -65,7 +53,7 @@ def impact_array(v, eps_y, nu, model, extrapolate, out):
 
 
 def _solve(v1_star, eps_y, nu, unloading, extrapolate):
-    model = unloading_code(unloading)
+    model = unloading_model(unloading).code
     (v, eps_y, nu), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
     check_velocity(v, "v1_star")
     check_eps_y(eps_y)
@@ -77,52 +65,11 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     impact_array(v, eps_y, nu, model, bool(extrapolate), out)
     bad = np.isnan(out[0])
     if np.any(bad):
-        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate, model=model)
+        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate, unloading=unloading)
     if extrapolate and np.any(out[0] > OMEGA_M_STAR_MAX):
         warn(f"extrapolated past w_m* = {OMEGA_M_STAR_MAX:g}, the largest interference "
              "JGM computed; the JG law is not validated there", ExtrapolationWarning)
     return out, shape
-
-
-def v1_star_limit(eps_y, nu, extrapolate=False, model=ETSION):
-    """Largest V1* the model accepts for one material: w_m* = 425 or, extrapolating, a/R = 1
-    (for JCG unloading, ``model=JCG``, also no further than eq 35 is defined)."""
-    w = w_upper_model(float(eps_y), float(nu), bool(extrapolate), model)
-    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
-
-
-_EXTRAPOLATE_HINT = "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas"
-
-
-def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", model=ETSION, V_c=None,
-                       hint=_EXTRAPOLATE_HINT):
-    """Raise the ValueError for the first impact whose w_m* is beyond the allowed range.
-
-    The one place that says which limit applies (w_m* = 425, a/R = 1, the end of JCG's eq 35).
-    ``v``: the speeds in the caller's unit, V1* or, with ``V_c`` (m/s), V1 in m/s; ``name`` is
-    the caller's parameter they came from (e.g. ``v_max``); ``hint`` ends the w_m* = 425 message."""
-    v, e, n = float(v[0]), float(eps_y[0]), float(nu[0])
-    lead = f"{name} = {v!r}" if V_c is None else f"{name} = {v!r} m/s"
-
-    def at(v_star):
-        return f"V1* = {v_star:.10g}" if V_c is None else f"V1 = {v_star * V_c:.10g} m/s (V1* = {v_star:.6g})"
-
-    w_ar = omega_star_limit_kernel(e, n)
-    if extrapolate and model == JCG and JCG_OMEGA_END < w_ar:
-        lim = v1_star_limit(e, n, True, JCG)
-        if (v if V_c is None else v / V_c) > lim:
-            raise ValueError(
-                f"{lead} is past the end of JCG unloading (eq 35) for eps_y = {e!r}, nu = {n!r}: "
-                f"its w_res/w_m reaches 1 at w_m* = {JCG_OMEGA_END:.6g}, i.e. {at(lim)}, and e is "
-                "undefined beyond (extrapolated far past the paper's w_m* = 425; unloading='etsion' "
-                "goes on to a/R = 1)")
-    if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
-        raise ValueError(
-            f"{lead} is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {e!r}, "
-            f"nu = {n!r}: a/R reaches 1 at w_m* = {w_ar:.6g}, i.e. {at(v1_star_limit(e, n, True))}")
-    raise ValueError(
-        f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
-        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(v1_star_limit(e, n))}. {hint}")
 
 
 def omega_m_star(v1_star, eps_y, nu, extrapolate=False):
@@ -152,8 +99,9 @@ def omega_m_star(v1_star, eps_y, nu, extrapolate=False):
 def e_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
     """Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38) with unloading (35) or (33).
 
-    Parameters as :func:`omega_m_star`; ``unloading`` is ``"jcg"`` (eq 35, default) or
-    ``"etsion"`` (eq 33).
+    Parameters as :func:`omega_m_star`; ``unloading`` names the unloading model:
+    ``"jcg"`` (eq 35, default), ``"etsion"`` (eq 33) or ``"brake"`` (Brake 2015, see
+    :mod:`fastrest.unloading.brake`).
     """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     return shaped(out[1], shape)

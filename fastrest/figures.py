@@ -29,7 +29,7 @@ from . import models as M
 from .contact import A_star, P_star
 from .energy import W_star
 from .materials import Impact, Material
-from .unloading import jcg_residual_ratio
+from .unloading.jcg import residual_ratio as jcg_residual_ratio
 
 #: Density of the alumina (aluminium oxide) spheres of JGM Figs 7-8 (kg/m^3). An assumption:
 #: JGM Tables 3-4 give only the flats' densities. Typical sintered alumina is 3900-3990 kg/m^3.
@@ -53,11 +53,12 @@ EPS_Y_SERIES = (0.0005, 0.001, 0.002, 0.005, 0.01)
 # Colours per model (the same in every figure) and for eps_y series.
 _COLOURS = {
     "jcg": "#1f77b4", "etsion": "#d62728", "thornton": "#2ca02c", "wu": "#9467bd",
-    "weir_tallon": "#8c564b", "chang_ling": "#ff7f0e", "hertz": "0.45",
+    "weir_tallon": "#8c564b", "chang_ling": "#ff7f0e", "hertz": "0.45", "brake": "#17becf",
 }
 _LABELS = {
     "jcg": "JGM, JCG unloading, eq (35)",
     "etsion": "JGM, Etsion unloading, eq (33)",
+    "brake": "JG loading, Brake unloading (not in the paper)",
     "thornton": "Thornton (1997), eq (2)",
     "wu": "Wu et al. (2003), eqs (39)-(41)",
     "weir_tallon": "Weir & Tallon (2005), eq (3)",
@@ -235,7 +236,9 @@ def figure5(ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=400):
 # Fig 6: unloading models and Wu et al.
 # ---------------------------------------------------------------------------------------------
 def figure6(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
-    """JGM Fig 6: e against V1* with JCG (eq 35) and Etsion (eq 33) unloading, and Wu et al.
+    """JGM Fig 6: e against V1* with JCG (eq 35) and Etsion (eq 33) unloading, and Wu et al.;
+    with, as an extra curve not in the paper, the JG loading with Brake's unloading
+    (:mod:`fastrest.unloading.brake`).
 
     Wu et al.'s eqs (40) (below V_fp) and (41) (above) are drawn solid where each applies and
     dotted outside; the vertical line is V_fp of eq (39), 0.008 V_c (E'/Sy)^2 (V1* = 320 for
@@ -244,9 +247,9 @@ def figure6(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
     """
     fig, ax = _new_axes(ax)
     v = _v_grid(eps_y, nu, 0.5, n)
-    for model in ("jcg", "etsion"):
+    for model in ("jcg", "etsion", "brake"):
         ax.plot(v, direct.e_star(v, eps_y, nu, model), color=_COLOURS[model], lw=1.8,
-                label=_LABELS[model])
+                ls="--" if model == "brake" else "-", label=_LABELS[model])
     v_fp = float(M.wu_finite_plastic_velocity(eps_y))
     vp = v[v > 1.0]
     e40 = 2.08 * vp**-0.25

@@ -52,13 +52,14 @@ import numpy as np
 from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, warn_if_outside_validated
 from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, p_star_jg
 from .energy import F_SWITCH, jg_integral
+from .limits import raise_interference_out_of_range, w_upper
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial)
-from .unloading import ETSION, JCG, jcg_residual_ratio, unloading_code
+from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
 
 __all__ = ["ForwardData", "forward_data", "forward_limit", "F_forward", "P_forward",
            "P_table_forward", "FP_table_forward", "returned_forward", "loss_forward",
-           "forward_values", "JCG", "ETSION"]
+           "forward_values", "JCG", "ETSION", "BRAKE"]
 
 #: Cells per octave of w (2^K). K = 5: max relative error ~5e-15 on F (K = 4: ~5e-13), measured
 #: against energy.f_star_kernel over 0.0005 <= eps_y <= 0.01 (tests/test_rough.py asserts <= 1e-12).
@@ -154,28 +155,23 @@ def FP_table_forward(data, w):
 def forward_values(data, w):
     """(F, P*, R, L) at interference w: loading energy, force, returned and dissipated energy.
 
-    Energies over U_c, force over P_c. R = P*(w) (w - w_res*(w)) (JGM eq 38 with eq 35 or 33),
-    L = F - R without cancellation. All NaN outside [0, w_max].
+    Energies over U_c, force over P_c. R = P*(w) (w - w_res*(w)) (JGM eq 38 with the unloading
+    model's w_res*), L = F - R without cancellation. All NaN outside [0, w_max] or for an unknown
+    unloading model.
     """
-    if not (w >= 0.0 and w <= data.w_max):
+    if not (w >= 0.0 and w <= data.w_max and data.model >= 0 and data.model < N_MODELS):
         return np.nan, np.nan, np.nan, np.nan
     if w <= W_SWITCH:
         p = w * math.sqrt(w)
         f = w * p
-        if w <= 1.0 or data.model == ETSION:
-            return f, p, f, 0.0  # elastic, or Etsion unloading after Hertz loading (e = 1)
-        r = jcg_residual_ratio(w - 1.0)
-        return f, p, f - f * r, f * r  # P* w = w^2.5 = F exactly under Hertz loading
-    f = cell_polynomial(data.f_rows, cell_index(w, data.shift, data.base), w)
-    p = _p_jg(data, w)
-    if data.model == JCG:
-        r = jcg_residual_ratio(w - 1.0)
-        q = p * w
-        ret = q - q * r
-        return f, p, ret, (f - q) + q * r
-    a_star = w * (w / W_SWITCH) ** data.B
-    ret = p * p / math.sqrt(a_star)
-    return f, p, ret, f - ret
+    else:
+        f = cell_polynomial(data.f_rows, cell_index(w, data.shift, data.base), w)
+        p = _p_jg(data, w)
+    if w <= 1.0:
+        return f, p, f, 0.0  # elastic
+    # the unloading model's energy split of an impact whose loading energy is f
+    e2, loss, _, _, _ = restitution(data.model, f, w, w - 1.0, p, data.eps_y, data.nu)
+    return f, p, e2 * f, loss * f
 
 
 @nb.njit(cache=True, inline="always")
@@ -222,8 +218,7 @@ def _f_march(nodes, eps_y, nu, out):
 
 def forward_limit(eps_y, nu, extrapolate=False):
     """Largest w* a :class:`ForwardData` may serve: 425 (JGM's range) or, extrapolating, a/R = 1."""
-    lim = float(omega_star_limit_kernel(float(eps_y), float(nu)))
-    return lim if extrapolate else min(OMEGA_M_STAR_MAX, lim)
+    return float(w_upper(float(eps_y), float(nu), bool(extrapolate)))
 
 
 def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
@@ -239,8 +234,8 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
     w_max : float
         Largest normalised interference omega/omega_c to serve (-), >= 0. Only the cells up to it
         are computed (cost grows with log(w_max/1.9): 250 cells and a few ms for w_max = 425).
-    unloading : {"jcg", "etsion"}
-        Residual-interference model, JGM eq (35) or (33).
+    unloading : {"jcg", "etsion", "brake"}
+        Residual-interference model, JGM eq (35), (33) or Brake's (:mod:`fastrest.unloading`).
     extrapolate : bool
         Allow w_max above 425 (JGM's range), up to the point where a/R = 1.
 
@@ -262,13 +257,7 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
         raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
     lim = forward_limit(eps_y, nu, extrapolate)
     if w_max > lim:
-        ar = float(omega_star_limit_kernel(eps_y, nu))
-        if extrapolate or ar <= OMEGA_M_STAR_MAX:
-            raise ValueError(f"w_max = {w_max!r} is past the end of the Jackson-Green law for eps_y = "
-                             f"{eps_y!r}, nu = {nu!r}: a/R reaches 1 at w* = {ar:.6g} (eq 12)")
-        raise ValueError(f"w_max = {w_max!r} is beyond w* = {OMEGA_M_STAR_MAX:g}, the largest "
-                         "interference the model covers (JGM section 3.3); pass extrapolate=True to "
-                         f"go up to a/R = 1 (w* = {ar:.6g}) with the same formulas")
+        raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max")
     C, B = float(c_of_nu(nu)), float(area_exponent(eps_y))
     shift = MANTISSA_BITS - bits_per_octave
     if w_max <= W_SWITCH:  # closed forms only: one dummy cell

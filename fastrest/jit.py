@@ -18,20 +18,28 @@ All functions take V1* = V1/V_c (dimensionless) and return NaN for input outside
 domain (negative or NaN speed, V1* > v_max, material outside a table, a table's point past
 w_m* = 425 or a/R = 1): check with ``x != x`` or
 ``np.isnan`` if your code can produce such input. Tables: ``fastrest.load_table().data``;
-``unloading`` is :data:`JCG` (eq 35) or :data:`ETSION` (eq 33).
+``unloading`` is :data:`JCG` (eq 35), :data:`ETSION` (eq 33) or :data:`BRAKE` (Brake 2015).
+
+Time-stepping codes: :func:`contact_force` (``law.data`` of :func:`fastrest.contact_law`, a state
+row of :data:`STATE_SIZE` per contact) gives the normal force with history, and
+:func:`critical_scales` the critical values of a contact from the two bodies' properties (the
+same code as :class:`fastrest.Impact`). See docs/examples/dem_wall.py.
 """
 import numba as nb
 import numpy as np
 
+from .critical import CriticalScales, critical_scales
 from .curve import CurveData, SceneData, e_curve, loss_curve, omega_m_curve, scene_value
+from .force_law import STATE_SIZE, contact_force, hertz_contact_time
 from .tables import TableData, table_value
-from .unloading import ETSION, JCG
+from .unloading import BRAKE, ETSION, JCG
 
 # inline="always": inlined into the caller's loop, the table's arrays are not reference-counted
 # per call (measured: e_table in a user loop 250-310 -> 130 ns per point, as the batch kernel).
 
-__all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "loss_scene", "JCG", "ETSION", "omega_m_curve", "e_curve", "loss_curve",
-           "omega_m_table", "e_table", "loss_table"]
+__all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "loss_scene", "JCG", "ETSION",
+           "BRAKE", "omega_m_curve", "e_curve", "loss_curve", "omega_m_table", "e_table", "loss_table",
+           "STATE_SIZE", "contact_force", "hertz_contact_time", "CriticalScales", "critical_scales"]
 
 
 @nb.njit(cache=True, inline="always")
@@ -42,18 +50,18 @@ def omega_m_table(tab, v1_star, eps_y, nu):
 
 @nb.njit(cache=True, inline="always")
 def e_table(tab, v1_star, eps_y, nu, unloading):
-    """e at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1), NaN for any other value.
-    NaN outside the table."""
-    if unloading != JCG and unloading != ETSION:
+    """e at (V1*, eps_y, nu); ``unloading`` = JCG, ETSION or BRAKE; NaN for a model the table
+    does not hold, and outside the table."""
+    if not unloading >= 0:
         return np.nan
     return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
 
 
 @nb.njit(cache=True, inline="always")
 def loss_table(tab, v1_star, eps_y, nu, unloading):
-    """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG (0) or ETSION (1), NaN for any other value.
-    NaN outside the table."""
-    if unloading != JCG and unloading != ETSION:
+    """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG, ETSION or BRAKE; NaN for a model the
+    table does not hold, and outside the table."""
+    if not unloading >= 0:
         return np.nan
     return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
 

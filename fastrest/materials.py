@@ -17,6 +17,8 @@ import math
 import numpy as np
 
 from ._validation import check_finite_positive, check_nu, real_scalar
+from .critical import (c_of_nu, critical_area, critical_energy, critical_force, critical_interference,
+                       critical_velocity, effective_mass, effective_modulus, effective_radius)
 
 
 def poisson_factor(nu):
@@ -31,50 +33,12 @@ def poisson_factor(nu):
     Returns
     -------
     float or ndarray
-        C (dimensionless).
+        C (dimensionless), from :func:`fastrest.critical.c_of_nu`.
     """
     nu = check_nu(nu, allow_half=True)
-    c = 1.295 * np.exp(0.736 * nu)
-    return float(c) if c.ndim == 0 else c
-
-
-def effective_modulus(E1, nu1, E2=math.inf, nu2=0.0):
-    """Combined elastic modulus E', 1/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Pa).
-
-    ``E2 = inf`` is a rigid counter-body. Hertz theory as used by JGM section 2.1.
-    """
-    inv = (1.0 - nu1**2) / E1
-    if math.isfinite(E2):
-        inv += (1.0 - nu2**2) / E2
-    return 1.0 / inv
-
-
-def critical_interference(C, Sy, E_eff, R):
-    """Critical interference at the onset of yield, omega_c = (pi C Sy / (2 E'))^2 R (m), JGM eq (4).
-
-    C: yield coefficient of eq (5) (-); Sy: yield strength (Pa); E_eff: E' (Pa); R: radius (m).
-    """
-    return (math.pi * C * Sy / (2.0 * E_eff)) ** 2 * R
-
-
-def critical_force(C, Sy, E_eff, R):
-    """Critical contact force P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N), JGM eq (6)."""
-    return 4.0 / 3.0 * (R / E_eff) ** 2 * (math.pi * C * Sy / 2.0) ** 3
-
-
-def critical_area(C, Sy, E_eff, R):
-    """Critical contact area A_c = pi^3 (C Sy R / (2 E'))^2 (m^2), JGM eq (7)."""
-    return math.pi**3 * (C * Sy * R / (2.0 * E_eff)) ** 2
-
-
-def critical_energy(C, Sy, E_eff, R):
-    """Strain energy at the onset of yield U_c = (pi C Sy)^5 R^3 / (60 E'^4) (J), JGM eq (23) = (2/5) P_c omega_c, eq (24)."""
-    return (math.pi * C * Sy) ** 5 * R**3 / (60.0 * E_eff**4)
-
-
-def critical_velocity(U_c, mass):
-    """Critical initial velocity V_c = sqrt(2 U_c / m) (m/s), JGM eq (28). U_c in J, mass in kg."""
-    return math.sqrt(2.0 * U_c / mass)
+    if nu.ndim == 0:
+        return float(c_of_nu(float(nu)))
+    return c_of_nu(np.ascontiguousarray(nu).ravel()).reshape(nu.shape)
 
 
 def critical_velocity_ratios(nu):
@@ -181,7 +145,7 @@ class Impact:
         m1 = _sphere_mass(sphere1, R1, mass1, "mass1")
         m2 = _sphere_mass(sphere2, R2, mass2, "mass2")
         self = cls.__new__(cls)
-        self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), m1 * m2 / (m1 + m2))
+        self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), effective_mass(m1, m2))
         return self
 
     def _init(self, sphere, R1, other, R2, mass):
@@ -191,9 +155,9 @@ class Impact:
             raise TypeError("flat must be a fastrest.Material or None (rigid flat)")
         check_finite_positive(R1, "R", "(m)")
         self.sphere, self.flat = sphere, other
-        self.R_eff = R1 if R2 is None else R1 * R2 / (R1 + R2)
+        self.R_eff = R1 if R2 is None else effective_radius(R1, R2)
         if other is None:
-            self.E_eff = effective_modulus(sphere.E, sphere.nu)
+            self.E_eff = effective_modulus(sphere.E, sphere.nu, math.inf, 0.0)
             yielding = sphere
         else:
             self.E_eff = effective_modulus(sphere.E, sphere.nu, other.E, other.nu)
@@ -267,28 +231,26 @@ class Impact:
         """Largest impact speed the model accepts (m/s): w_m* = 425 (JGM section 3.3), or with
         ``extrapolate=True`` where the contact radius reaches the sphere's (a/R = 1, eq 12) or,
         for JCG unloading, where eq (35) ends (w_res = w_m, at w_m* = 10017.5) if that comes first."""
-        from .direct import v1_star_limit
-        from .unloading import unloading_code
+        from .limits import v1_star_limit
 
-        return v1_star_limit(self.eps_y, self.nu, extrapolate, unloading_code(unloading)) * self.V_c
+        return v1_star_limit(self.eps_y, self.nu, extrapolate, unloading) * self.V_c
 
     def v1_star(self, V1, extrapolate=False, unloading=None):
         """V1* = V1/V_c (-) for impact speeds V1 (m/s), eq (28); ValueError in m/s outside the domain.
 
-        ``unloading`` ("jcg" or "etsion") matters only extrapolating: JCG's eq (35) ends before
+        ``unloading`` (a model name, e.g. "jcg") matters only extrapolating: JCG's eq (35) ends before
         a/R = 1 (see :meth:`V_max`). None: the contact law's own limit.
         """
         from ._validation import check_velocity
-        from .direct import raise_out_of_range, v1_star_limit
-        from .unloading import ETSION, unloading_code
+        from .limits import raise_out_of_range, v1_star_limit
 
-        model = ETSION if unloading is None else unloading_code(unloading)
         V = check_velocity(V1, "V1", "(m/s)")
         v = V / self.V_c
         # a few ulp of slack: V_max() itself (lim * V_c / V_c) must pass; the solver decides there
-        over = v > v1_star_limit(self.eps_y, self.nu, extrapolate, model) * (1.0 + 1e-12)
+        over = v > v1_star_limit(self.eps_y, self.nu, extrapolate, unloading) * (1.0 + 1e-12)
         if np.any(over):
-            raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", model, V_c=self.V_c)
+            raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", unloading,
+                               V_c=self.V_c)
         return v
 
     def omega_m(self, V1, extrapolate=False):
@@ -308,6 +270,14 @@ class Impact:
         V1a = np.asarray(V1, dtype=np.float64)
         out = self.e(V1, unloading=unloading, extrapolate=extrapolate) * V1a
         return float(out) if np.ndim(out) == 0 else out
+
+    def contact_law(self, unloading="jcg", extrapolate=False):
+        """The time-domain contact law of this contact in SI units (:func:`fastrest.contact_law`):
+        ``law.force(omega)`` takes interferences omega (m) in time order and returns forces (N)."""
+        from .force_law import contact_law
+
+        return contact_law(self.eps_y, self.nu, unloading, extrapolate=extrapolate, omega_c=self.omega_c,
+                           P_c=self.P_c)
 
     def residual(self, V1, unloading="jcg", extrapolate=False):
         """Residual interference omega_res (m) and residual radius R_res (m), eqs (33)-(36).

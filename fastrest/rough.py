@@ -38,8 +38,9 @@ import numpy as np
 from . import forward as fw
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning,
                           check_finite_positive, warn, warn_if_outside_validated)
-from .contact import W_SWITCH, omega_star_limit_kernel
+from .contact import W_SWITCH
 from .interpolation import chebyshev_nodes, fit_cells, cell_polynomial
+from .limits import interference_limit_message
 from .materials import Impact, Material
 from .unloading import unloading_code
 
@@ -499,7 +500,7 @@ class RoughImpact:
 
     Attributes
     ----------
-    V1 : impact speed (m/s).  M : mass of the flat (kg).  unloading : "jcg" or "etsion".
+    V1 : impact speed (m/s).  M : mass of the flat (kg).  unloading : "jcg", "etsion" or "brake".
     V1_star : V1 / V_c, V_c = sqrt(2 U_c / M) of one asperity (-).
     e : coefficient of restitution of the surface e_s = V2 / V1 (-).
     loss : dissipated fraction 1 - e_s^2 (-), accurate near 0.
@@ -669,8 +670,8 @@ class RoughSurface:
         M : float
             Mass of the flat (kg), > 0 (against a fixed surface; use the reduced mass for two free
             bodies).
-        unloading : {"jcg", "etsion"}
-            Residual interference model of every summit, JGM eq (35) or (33).
+        unloading : {"jcg", "etsion", "brake"}
+            Residual interference model of every summit, JGM eq (35), (33) or Brake's (:mod:`fastrest.unloading`).
         extrapolate : bool
             Allow summits past w* = 425 (JGM's range), up to a/R = 1, with an ExtrapolationWarning.
 
@@ -716,18 +717,12 @@ class RoughSurface:
         lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
         data = self._tables.get(unloading_code(unloading))
         if data is not None and data.w_max >= lim:
-            ar = float(omega_star_limit_kernel(self.eps_y, self.nu))
-            if extrapolate or ar <= OMEGA_M_STAR_MAX:
-                what = f"past the end of the Jackson-Green law: a/R reaches 1 at w* = {ar:.6g} (eq 12)"
-            else:
-                what = (f"past w* = {OMEGA_M_STAR_MAX:g}, the largest interference the model covers "
-                        "(JGM section 3.3); pass extrapolate=True to go up to a/R = 1 "
-                        f"(w* = {ar:.6g}) with the same formulas")
+            what = interference_limit_message(max(need, lim * (1 + 1e-15)), self.eps_y, self.nu, extrapolate)
             if self.kind == "statistical":
                 what += (f". The height distribution is integrated until its tail is negligible "
                          f"(here up to w* = {need:.4g}); a pdf with bounded support "
                          "(GreenwoodWilliamson(pdf=..., support=...)) truncates it")
-            raise ValueError(f"the impact at V1 = {v1_bad!r} m/s drives summits {what}")
+            raise ValueError(f"the impact at V1 = {v1_bad!r} m/s drives summits to a w* that {what}")
         return self.forward(unloading, min(lim, max(1.25 * need, 2.0 * (data.w_max if data else 0.0))),
                             extrapolate)
 

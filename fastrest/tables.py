@@ -32,21 +32,23 @@ from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
+from .critical import c_of_nu
 from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
-from .direct import impact_array, raise_out_of_range, v1_star_limit
+from .direct import impact_array
+from .limits import raise_out_of_range, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
 from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, chebyshev_nodes, fma,
                             two_level_cells, two_level_index, values_to_coeffs)
-from .unloading import ETSION, JCG, restitution_kernel, unloading_code
+from . import unloading as _unloading
+from .unloading import N_MODELS, restitution_kernel
 
-QUANTITIES = ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion")
-QUANTITY_META = {
-    "omega_m_star": ("1", "normalised maximum interference omega_m/omega_c (JGM eq 29, 31)"),
-    "e_jcg": ("1", "coefficient of restitution, JCG unloading (JGM eqs 35, 38)"),
-    "loss_jcg": ("1", "dissipated fraction 1 - e^2, JCG unloading"),
-    "e_etsion": ("1", "coefficient of restitution, Etsion unloading (JGM eqs 33, 38)"),
-    "loss_etsion": ("1", "dissipated fraction 1 - e^2, Etsion unloading"),
-}
+#: Every registered unloading model is tabulated, in code order: quantity 1 + 2 code is its e,
+#: 2 + 2 code its 1 - e^2.
+QUANTITIES = ("omega_m_star",) + tuple(f"{q}_{name}" for name in _unloading.NAMES for q in ("e", "loss"))
+QUANTITY_META = {"omega_m_star": ("1", "normalised maximum interference omega_m/omega_c (JGM eq 29, 31)")}
+for _m in _unloading.MODELS.values():
+    QUANTITY_META[f"e_{_m.name}"] = ("1", f"coefficient of restitution, {_m.label} (JGM eq 38)")
+    QUANTITY_META[f"loss_{_m.name}"] = ("1", f"dissipated fraction 1 - e^2, {_m.label}")
 #: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
 OMEGA_LIMIT_TOL = 1e-9
 OMEGA_LIMIT = OMEGA_M_STAR_MAX * (1.0 + OMEGA_LIMIT_TOL)
@@ -178,7 +180,7 @@ def _generate_row(eps_row, nu_nodes, v_nodes, omega_grid, out, w_star):
         omega_m_sorted_kernel(v_nodes, eps_y, nu, w_hi, w)
         for k in range(v_nodes.size):
             out[0, j, k] = w[k]
-            for m in range(2):
+            for m in range(N_MODELS):
                 e, loss, _, _ = restitution_kernel(v_nodes[k], w[k], w[k] - 1.0, eps_y, nu, m)
                 out[1 + 2 * m, j, k] = e
                 out[2 + 2 * m, j, k] = loss
@@ -206,7 +208,9 @@ def yield_parameter(eps_y, nu):
     remaining dependence on nu is very smooth, where on an (eps_y, nu) grid both axes carry the
     fast variation of cos(pi a/R) at large w* (bench/RESULTS.md compares grids).
     """
-    return 1.295 * np.exp(0.736 * np.asarray(nu)) * eps_y
+    nu = np.asarray(nu, dtype=np.float64)
+    c = c_of_nu(float(nu)) if nu.ndim == 0 else c_of_nu(np.ascontiguousarray(nu).ravel()).reshape(nu.shape)
+    return c * eps_y
 
 
 def xi_range(g):
@@ -298,7 +302,7 @@ TableData = namedtuple("TableData", ["s_rate", "xi0", "nu0", "inv_h_nu", "n_nu",
                                      "eps_lo", "eps_hi", "nu_lo", "nu_hi", "v_split", "shift_fine",
                                      "base_fine", "shift", "base", "v_top", "v_safe", "cells",
                                      "cell_block", "block_inv_h", "block_n", "block_cell0",
-                                     "block_offset", "block_qstride", "coef", "hertz"])
+                                     "block_offset", "block_qstride", "coef", "hertz", "n_quantities"])
 TableData.__doc__ = """Numba-friendly data of a :class:`Table` (see :mod:`fastrest.jit`).
 
 eps_y enters through s = C(nu) eps_y and xi = expm1(s_rate s)/s_rate, uniform from xi0 with
@@ -306,9 +310,11 @@ spacing 1/block_inv_h[b] over block_n[b] nodes in block b of cells.
 cells: (ncell, 2) [center, 1/half_width] of each V1* cell (row of V1*:
 :func:`fastrest.interpolation.two_level_index` with v_split, shift_fine, base_fine, shift, base);
 cell_block: the block of each cell; coef: 1-D, for each block b from block_offset[b] a C-order
-(5, cells of b, block_n[b], n_nu, 6) array (block_qstride[b] per quantity) of the polynomial
-coefficients of omega_m_star, e_jcg, loss_jcg, e_etsion, loss_etsion; v_safe: below this V1* every material of the table has w_m* <= 425; hertz: (5 *
-N_HERTZ, 8) rows of the material-independent Hertz-range closed forms (see :mod:`fastrest.curve`).
+(n_quantities, cells of b, block_n[b], n_nu, 6) array (block_qstride[b] per quantity) of the
+polynomial coefficients of :data:`QUANTITIES` (omega_m_star, then e and 1 - e^2 of each unloading
+model the table holds, by code); v_safe: below this V1* every material of the table has w_m* <= 425; hertz: (5 *
+N_HERTZ, 8) rows of the material-independent Hertz-range closed forms (see :mod:`fastrest.curve`);
+n_quantities: 1 + 2 x the number of unloading models held.
 """
 
 
@@ -346,12 +352,12 @@ def _lagrange6(x, x0, inv_h, n):
 
 @nb.njit(cache=True, inline="always")
 def table_value(tab, q, v, eps_y, nu):
-    """Quantity q (0 w_m*, 1 e_jcg, 2 loss_jcg, 3 e_etsion, 4 loss_etsion) at (V1*, eps_y, nu).
+    """Quantity q of :data:`QUANTITIES` (0 w_m*, 1 + 2 code e, 2 + 2 code 1 - e^2) at (V1*, eps_y, nu).
 
     NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past a/R = 1 for eps_y > 0.0102) or for invalid input
-    (including q outside 0-4).
+    (including a q the table does not hold).
     """
-    if not (q >= 0 and q < 5):  # the five QUANTITIES
+    if not (q >= 0 and q < tab.n_quantities):
         return np.nan
     return _interpolate(tab, q, v, eps_y, nu, True)
 
@@ -363,17 +369,17 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     if not v > V_SWITCH:
         if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
             r = cell_polynomial(tab.hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
-            return r * (v - 1.0) if q == 2 or q == 4 else r
+            return r * (v - 1.0) if q > 0 and q % 2 == 0 else r  # the losses
         if v >= 0.0:  # elastic, exact
             if q == 0:
                 return v**0.8
-            return 1.0 if q == 1 or q == 3 else 0.0
+            return 1.0 if q % 2 == 1 else 0.0
         return np.nan
     if not v <= tab.v_top:
         return np.nan
     cell = two_level_index(v, tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
     u = (v - tab.cells[cell, 0]) * tab.cells[cell, 1]
-    s = 1.295 * math.exp(0.736 * nu) * eps_y
+    s = c_of_nu(nu) * eps_y
     xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
     b = tab.cell_block[cell]
     n = tab.block_n[b]
@@ -437,10 +443,11 @@ def _table_array_parallel(tab, q, v, eps_y, nu, out):
         out[k] = table_value(tab, q, v[k], eps_y[k], nu[k])
 
 
-def _hertz_table_rows():
-    """Hertz-range rows for the table's five quantities (q * N_HERTZ + cell)."""
-    jcg, ets = hertz_rows(JCG), hertz_rows(ETSION)
-    return np.ascontiguousarray(np.concatenate([jcg[0], jcg[1], jcg[2], ets[1], ets[2]]))
+def _hertz_table_rows(n_models):
+    """Hertz-range rows for the table's quantities (q * N_HERTZ + cell): w_m*, then e and 1 - e^2
+    of the first ``n_models`` unloading models."""
+    rows = [hertz_rows(code) for code in range(n_models)]
+    return np.ascontiguousarray(np.concatenate([rows[0][0]] + [r[k] for r in rows for k in (1, 2)]))
 
 
 def _entry_point(kernel, sig):
@@ -478,7 +485,8 @@ class Table:
         half = 0.5 * (edges[:, 1] - edges[:, 0])
         xi0, xi1 = xi_range(g)
         blocks = gen["blocks"]
-        # per block (5, n_eps, n_nu, ncell, 6) -> (5, ncell, n_eps, n_nu, 6), flattened one after another
+        nq = blocks[0]["values"].shape[0]
+        # per block (nq, n_eps, n_nu, ncell, 6) -> (nq, ncell, n_eps, n_nu, 6), flattened one after another
         parts = [np.ascontiguousarray(values_to_coeffs(b["values"]).transpose(0, 3, 1, 2, 4)).ravel()
                  for b in blocks]
         cell_block = np.empty(edges.shape[0], dtype=np.int64)
@@ -494,7 +502,7 @@ class Table:
             float(np.min(gen["v1_star_max"])), np.ascontiguousarray(np.stack([center, 1.0 / half], 1)),
             cell_block, np.array([(b["n"] - 1) / (xi1 - xi0) for b in blocks]), i64([b["n"] for b in blocks]),
             i64([b["cell0"] for b in blocks]), i64(np.cumsum([0] + [p.size for p in parts[:-1]])),
-            i64([p.size // len(QUANTITIES) for p in parts]), np.concatenate(parts), _hertz_table_rows())
+            i64([p.size // nq for p in parts]), np.concatenate(parts), _hertz_table_rows((nq - 1) // 2), nq)
         self.grid = g
         self.gen = gen
         self._entry = None
@@ -557,37 +565,46 @@ class Table:
         """Interpolated w_m* (-); see :func:`fastrest.direct.omega_m_star` for the parameters."""
         return self._scalar(0, v1_star, eps_y, nu)
 
+    def _model_code(self, unloading):
+        code = _unloading.get(unloading).code
+        if not 2 + 2 * code < self.data.n_quantities:
+            raise ValueError(f"this table holds no values for unloading={unloading!r} (it was built for "
+                             f"{_unloading.NAMES[:(self.data.n_quantities - 1) // 2]}); rebuild it with "
+                             "`fastrest build` or use fastrest.curve / fastrest.direct")
+        return code
+
     def e_star(self, v1_star, eps_y, nu, unloading="jcg"):
         """Interpolated e (-); see :func:`fastrest.direct.e_star`."""
-        return self._scalar(1 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
+        return self._scalar(1 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
     def loss_star(self, v1_star, eps_y, nu, unloading="jcg"):
         """Interpolated 1 - e^2 (-); see :func:`fastrest.direct.loss_star`."""
-        return self._scalar(2 + 2 * unloading_code(unloading), v1_star, eps_y, nu)
+        return self._scalar(2 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
     # --- accuracy against the direct solver ---
     def measure_error(self, n_points=4000, seed=12345):
         """Worst relative error of every quantity against the direct solver (dict).
 
         Random points uniform in (eps_y, nu) over the table and log-uniform in V1* in (1, V1*_max]
-        of each material, plus the hard cases (V1* -> 1, both sides of 1.9^1.25, V1*_max). For the
-        Etsion loss, which changes sign, the error is relative to max(|1 - e^2|, 1e-3).
+        of each material, plus the hard cases (V1* -> 1, both sides of 1.9^1.25, V1*_max). For a
+        loss that changes sign (Etsion's and Brake's, where e > 1 just above V1* = 1.9^1.25) the
+        error is relative to max(|1 - e^2|, 1e-3).
         """
         v, e, n = sample_points(self.grid, n_points, seed)
-        ref = np.empty((5, v.size))
-        got = np.empty((5, v.size))
-        for m in (JCG, ETSION):
+        nq = self.data.n_quantities
+        ref = np.empty((nq, v.size))
+        got = np.empty((nq, v.size))
+        for m in range((nq - 1) // 2):
             sol = np.empty((5, v.size))
             impact_array(v, e, n, m, False, sol)
-            if m == JCG:
-                ref[0] = sol[0]
+            ref[0] = sol[0]
             ref[1 + 2 * m] = sol[1]
             ref[2 + 2 * m] = sol[2]
-        for q in range(5):
+        for q in range(nq):
             _interpolant_array(self.data, q, v, e, n, got[q])
         errs = {}
-        for q, name in enumerate(QUANTITIES):
-            floor = 1e-3 if name == "loss_etsion" else 0.0
+        for q, name in enumerate(QUANTITIES[:nq]):
+            floor = 1e-3 if name.startswith("loss_") and np.any(ref[q] < 0) else 0.0
             den = np.maximum(np.abs(ref[q]), floor)
             ok = den > 0
             err = np.abs(got[q] - ref[q])
@@ -624,8 +641,8 @@ MODEL_ATTRS = {
     "source": "fastrest direct solver (composite Gauss-Legendre quadrature + Newton)",
     "model": {"paper": "Jackson, Green & Marghitu 2010", "doi": "10.1007/s11071-009-9591-z",
               "loading": "Jackson & Green 2005 elasto-plastic law, JGM eqs 8-15",
-              "energy": "JGM eqs 22-31", "unloading_jcg": "Jackson-Chusoipin-Green fit, JGM eq 35",
-              "unloading_etsion": "Etsion et al., JGM eqs 33-34", "restitution": "JGM eq 38"},
+              "energy": "JGM eqs 22-31", "restitution": "JGM eq 38",
+              **{f"unloading_{m.name}": m.label for m in _unloading.MODELS.values()}},
 }
 
 
@@ -667,6 +684,7 @@ def write(gen, path, errors=None):
         "validated_range": {"eps_y": list(EPS_Y_VALIDATED), "nu": list(NU_VALIDATED),
                             "omega_m_star_max": OMEGA_M_STAR_MAX},
         "history": f"built by fastrest {__version__} (fastrest build)",
+        "unloading_models": ",".join(_unloading.NAMES),
     })
     if errors is not None:
         attrs["measured_error"] = errors
@@ -703,8 +721,11 @@ def read(path):
         g = normalise_grid(a["grid"])
         cells = a["cells"]
         ds = td.datasets
+        held = str(a.get("unloading_models", "jcg,etsion")).split(",")  # files before Brake: two models
+        if held != list(_unloading.NAMES[:len(held)]) or not held:
+            raise ValueError(f"unloading models {held} are not a prefix of this fastrest's {_unloading.NAMES}")
         blocks = [dict(cell0=int(c0), cell1=int(c1), n=int(n), c_eps_y=td.axes[f"c_eps_y_{k}"],
-                       values=np.stack([ds[f"{q}_{k}"] for q in QUANTITIES]))
+                       values=np.stack([ds[f"{q}_{k}"] for q in QUANTITIES[:1 + 2 * len(held)]]))
                   for k, (c0, c1, n) in enumerate(cells["blocks"])]
         gen = dict(grid=g, eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=cells["v1_star_top"],
                    base_fine=cells["first_key_fine"], base=cells["first_key"],
@@ -818,8 +839,8 @@ _TOP_DOC = """{what}, from the shipped default table.
     """
 
 _UNLOADING_DOC = """
-    unloading : {"jcg", "etsion"}
-        Unloading model: Jackson-Chusoipin-Green, JGM eq (35) (default), or Etsion et al., eq (33)."""
+    unloading : {"jcg", "etsion", "brake"}
+        Unloading model: Jackson-Chusoipin-Green, JGM eq (35) (default), Etsion et al., eq (33), or Brake (2015)."""
 
 
 def omega_m_star(v1_star, eps_y, nu):

@@ -25,6 +25,8 @@ Normalised model (w = omega/omega_c; eps_y = S_y/E' > 0; Poisson nu in [0, 0.5))
   (equivalently F = 1 + (5/2) int_1^w P*; (W_ep)* of (25) is 1 - F.)
 * JCG unloading (35):  r = w_res/w_m = 1.02 (1 - ((w_m + 5.9)/6.9)^(-0.54)), r = 0 for w_m <= 1
 * Etsion unloading (33): w_m - w_res* = P*(w_m) / sqrt(A*(w_m))
+* Brake unloading (Brake 2015 as implemented by tmdsimpy, _normal_asperity_unloading):
+  w_m - w_res* = P*(w_m) / sqrt(w_m)
 * (32)+(38):  e^2 = P*(w_m) (w_m - w_res*) / V1*^2;  R_res/R = P*(w_m)^2 / (w_m - w_res*)^3  (36)
 * V1* <= 1: elastic, e = 1.
 
@@ -105,7 +107,7 @@ def _gauss_legendre_half(n):
 
 _GL_HALF = _gauss_legendre_half(24)
 
-_UNLOADINGS = ("jcg", "etsion")
+_UNLOADINGS = ("jcg", "etsion", "brake")
 
 
 # --------------------------------------------------------------------------- helpers
@@ -122,7 +124,7 @@ def _check_params(eps_y, nu):
 def _check_unloading(unloading):
     u = str(unloading).lower()
     if u not in _UNLOADINGS:
-        raise ValueError(f"unloading must be 'jcg' or 'etsion', got {unloading!r}")
+        raise ValueError(f"unloading must be 'jcg', 'etsion' or 'brake', got {unloading!r}")
     return u
 
 
@@ -306,11 +308,13 @@ def _restitution(v1_star: float, eps_y: float, nu: float, unloading: str):
     """
     law, v1, wm = _solve(v1_star, eps_y, nu)
     one = _mpf(1)
-    if unloading == "etsion":
-        if wm <= _W19:          # Hertz loading: (33) gives w_res = 0, e = 1 exactly
+    if unloading in ("etsion", "brake"):
+        if wm <= _W19:          # Hertz loading: (33) gives w_res = 0, e = 1 exactly (Brake too)
             return one, _mpf(0), _mpf(0), one
         P = law.P_jg(wm)
-        d = P / _ctx.sqrt(law.A_jg(wm))        # w_m - w_res*
+        # w_m - w_res*: Etsion (33) with the JG area; Brake (as tmdsimpy implements it,
+        # deltabar = deltam (1 - Fm / F_Hertz(deltam))) with the Hertz area A* = w_m
+        d = P / _ctx.sqrt(law.A_jg(wm) if unloading == "etsion" else wm)
         e2 = P * d / (v1 * v1)
         return e2, 1 - e2, wm - d, P * P / d ** 3
     # JCG

@@ -35,13 +35,13 @@ def run(argv, capsys):
 
 
 def parse_impact_rows(out):
-    """Numeric rows of the `e` table: V, V1*, w_m*, e (JCG), e (Etsion)."""
+    """Numeric rows of the `e` table: V, V1*, w_m*, e (JCG), e (Etsion), e (Brake)."""
     lines = out.splitlines()
     start = next(i for i, line in enumerate(lines) if "e (JCG)" in line) + 1
     rows = []
     for line in lines[start:]:
         parts = line.split()
-        if len(parts) != 5:
+        if len(parts) != 6:
             break
         rows.append([float(p) for p in parts])
     return np.array(rows)
@@ -58,7 +58,7 @@ def test_e_readme_example(capsys):
     assert crit["V_c"] == pytest.approx(imp.V_c, rel=1e-5)
     assert crit["eps_y"] == pytest.approx(imp.eps_y, rel=1e-5)
     rows = parse_impact_rows(out)
-    assert rows.shape == (4, 5)
+    assert rows.shape == (4, 6)
     V = np.array(README_V)
     np.testing.assert_array_equal(rows[:, 0], V)
     np.testing.assert_allclose(rows[:, 1], V / imp.V_c, rtol=1e-3)                    # %10.4g
@@ -162,13 +162,14 @@ def test_info_default_table(capsys):
     assert f"version {fastrest._hdf5.FORMAT_VERSION}" in out
     assert "fastrest-table" in out
     assert "max relative error" in out
-    for q in ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion"):
+    for q in ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion", "e_brake", "loss_brake"):
         assert q in out
     code, out, err = run(["info", str(path), "--json"], capsys)
     assert code == 0, err
     doc = json.loads(out)
     assert doc["format_version"] == fastrest._hdf5.FORMAT_VERSION
-    assert set(doc["measured_error"]) == {"omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion"}
+    assert set(doc["measured_error"]) == {"omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion",
+                                          "e_brake", "loss_brake"}
 
 
 def test_info_invalid_files_exit_1(capsys, tmp_path):

@@ -146,8 +146,8 @@ def test_e_without_model_unchanged(capsys):
     assert cli.main(["e", *TABLE1_ARGS, "--V", "1", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert "models" not in out
-    assert set(out["impacts"][0]) == {"V", "V1_star", "omega_m_star", "e_jcg", "e_etsion", "V2_jcg",
-                                         "V2_etsion"}
+    assert set(out["impacts"][0]) == {"V", "V1_star", "omega_m_star", "e_jcg", "e_etsion", "e_brake",
+                                         "V2_jcg", "V2_etsion", "V2_brake"}
 
 
 def test_e_unknown_model_is_a_clear_error(capsys):

@@ -1,0 +1,190 @@
+"""The time-domain contact law: cost per force call against Hertz, and the time-step rule.
+
+``python -m bench.force_law [--quick]`` writes bench/FORCE_LAW.md:
+
+1. ns per call of :func:`fastrest.jit.contact_force` in a user's ``@njit`` loop over contacts and
+   time steps (paths of real impacts: Hertz, JG loading, unloading and gaps), against a plain
+   Hertz force ``w^1.5`` evaluated in the same loop and run (interleaved rounds; the ratio is the
+   median of per-round ratios), and the exact JG law (:func:`fastrest.contact.p_star_kernel`);
+2. the time of one time-stepped impact (:meth:`fastrest.ContactLaw.impact`) at the step count
+   docs/model.md quotes;
+3. the convergence table behind the time-step rule: worst relative error of e from velocity
+   Verlet against the energy balance (:func:`fastrest.curve`) for three unloading models, four
+   materials and V1* from 1.01 to the w_m* = 425 speed, by steps per Hertz contact duration, with
+   and without locating the crossing of w* = 1.9.
+"""
+import argparse
+import datetime
+import math
+import sys
+import warnings
+from pathlib import Path
+
+import numba
+import numpy as np
+
+import fastrest
+from fastrest import direct
+from fastrest import jit as frj
+from fastrest.contact import p_star_kernel
+
+from . import report
+from .timing import fmt_time, interleaved
+
+HERE = Path(__file__).resolve().parent
+NAMES = ("jcg", "etsion", "brake")
+MATERIALS = [(0.0005, 0.2), (0.005, 0.33), (0.01, 0.45), (0.002, 0.45)]
+STEPS = [500, 1000, 2000, 4000, 8000, 16000, 32000, 64000]
+#: The step count docs/model.md and tests/test_force_law.py quote for 1e-8.
+STEPS_1E8 = 40000
+
+
+@numba.njit
+def _loop_law(law, states, w, reps):
+    s = 0.0
+    for _ in range(reps):
+        for k in range(w.shape[0]):
+            st = states[k]
+            for j in range(4):
+                st[j] = 0.0
+            for i in range(w.shape[1]):
+                s += frj.contact_force(law, st, w[k, i])
+    return s
+
+
+@numba.njit
+def _loop_hertz(w, reps):
+    s = 0.0
+    for _ in range(reps):
+        for k in range(w.shape[0]):
+            for i in range(w.shape[1]):
+                x = w[k, i]
+                s += x * math.sqrt(x) if x > 0.0 else 0.0
+    return s
+
+
+@numba.njit
+def _loop_exact(w, eps_y, nu, reps):
+    s = 0.0
+    for _ in range(reps):
+        for k in range(w.shape[0]):
+            for i in range(w.shape[1]):
+                x = w[k, i]
+                s += p_star_kernel(x, eps_y, nu) if x > 0.0 else 0.0
+    return s
+
+
+def impact_paths(n_contacts, n_steps, seed=0):
+    """Interference histories of real impacts (V1* log-uniform in [1.01, 100], JCG), each sampled
+    at n_steps points from first touch to past separation: what a DEM force loop sees."""
+    rng = np.random.default_rng(seed)
+    law = fastrest.contact_law(0.005, 0.33, "jcg")
+    out = np.empty((n_contacts, n_steps))
+    for k in range(n_contacts):
+        v = math.exp(rng.uniform(math.log(1.01), math.log(100.0)))
+        tau = frj.hertz_contact_time(v) * 1.3  # the plastic contact lasts a little longer
+        dt = tau / n_steps
+        w, vel, a = 0.0, v, 0.0
+        state = np.zeros(frj.STATE_SIZE)
+        for i in range(n_steps):
+            w += vel * dt + 0.5 * a * dt * dt
+            a_new = -1.25 * frj.contact_force(law.data, state, w)
+            vel += 0.5 * (a + a_new) * dt
+            a = a_new
+            out[k, i] = w
+    return out
+
+
+def cost(cfg, log):
+    w = impact_paths(cfg["contacts"], cfg["path_steps"])
+    n = w.size
+    laws = {m: fastrest.contact_law(0.005, 0.33, m) for m in NAMES}
+    states = np.zeros((w.shape[0], frj.STATE_SIZE))
+    cases = {"hertz": (lambda: _loop_hertz(w, 1), n)}
+    for m in NAMES:
+        cases[f"contact_force ({m})"] = (lambda m=m: _loop_law(laws[m].data, states, w, 1), n)
+    cases["exact JG law, no history"] = (lambda: _loop_exact(w, 0.005, 0.33, 1), n)
+    t = interleaved(cases, cfg["rounds"], ref="hertz")
+    frac = {"gap (w <= 0)": float(np.mean(w <= 0)), "Hertz (0 < w <= 1.9)": float(np.mean((w > 0) & (w <= 1.9))),
+            "beyond 1.9": float(np.mean(w > 1.9))}
+    law = laws["jcg"]
+    imp = {f"V1* = {v:g}": interleaved({"impact": (lambda v=v: law.impact(v, STEPS_1E8), 1)}, cfg["rounds"])["impact"]
+           for v in (1.5, 30.0)}
+    log(f"  contact_force / hertz: {t['contact_force (jcg)'].ratio:.2f}")
+    return t, frac, imp
+
+
+def convergence(cfg, log):
+    rows = {}
+    steps = cfg["steps"]
+    for locate in (True, False):
+        worst = np.zeros(len(steps))
+        for m in NAMES:
+            for eps, nu in MATERIALS:
+                law = fastrest.contact_law(eps, nu, m)
+                c = fastrest.curve(eps, nu, m)
+                top = direct.v1_star_limit(eps, nu) * (1 - 1e-6)
+                for v in [1.01, 1.5, 2.2, 2.3, 5.0, 40.0, top]:
+                    ref = c.e(v)
+                    for j, n in enumerate(steps):
+                        worst[j] = max(worst[j], abs(law.impact(v, n, locate)["e"] / ref - 1))
+        rows[locate] = worst
+        log(f"  locate={locate}: " + " ".join(f"{x:.1e}" for x in worst))
+    return rows
+
+
+def write(t, frac, imp, conv, cfg, path):
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    m = report.machine()
+    L = ["# The contact law in the time domain: cost and time step", "",
+         f"Generated by `python -m bench.force_law{' --quick' if cfg['quick'] else ''}` on {date}; "
+         f"machine: {m.get('cpu', '?')}, {m.get('cores', '?')} cores. Times are medians of "
+         f"{cfg['rounds']} interleaved rounds; ratios are medians of per-round ratios to the Hertz "
+         "loop of the same round.", "",
+         "## 1. Cost of one force call in a user's @njit loop", "",
+         f"{cfg['contacts']} contacts x {cfg['path_steps']} steps of real impact paths (V1* 1.01-100); "
+         "share of calls: " + ", ".join(f"{k} {v:.0%}" for k, v in frac.items()) + ".", "",
+         "| force | ns per call (median) | x Hertz |", "|---|---|---|"]
+    for name, x in t.items():
+        L.append(f"| {name} | {x.median / x.n_evals * 1e9:.2f} | {x.ratio:.2f} |")
+    L += ["", "Target (issue 11): contact_force <= 3x a plain Hertz force in the same loop.", "",
+          "## 2. One time-stepped impact", "",
+          f"`ContactLaw.impact(v1_star, {STEPS_1E8})` (velocity Verlet, switch located, JCG, eps_y = 0.005, "
+          "nu = 0.33):", "", "| impact | time (median) |", "|---|---|"]
+    for name, x in imp.items():
+        L.append(f"| {name} | {fmt_time(x.median)} |")
+    L += ["", "## 3. Steps per contact against the error in e", "",
+          "Worst |e_Verlet / e_energy balance - 1| over 3 unloading models (JCG, Etsion, Brake), "
+          f"materials (eps_y, nu) = {MATERIALS}, V1* = 1.01, 1.5, 2.2, 2.3, 5, 40 and the w_m* = 425 "
+          "speed (x (1 - 1e-6)); N = steps per Hertz contact duration tau_c(V1*) = 2.943 V1*^-0.2 "
+          "(normalised time; in seconds 2.868 (m'^2/(R' E'^2 V1))^(1/5)).", "",
+          "| N | w* = 1.9 crossing located | not located |", "|---|---|---|"]
+    for j, n in enumerate(cfg["steps"]):
+        L.append(f"| {n} | {conv[True][j]:.2e} | {conv[False][j]:.2e} |")
+    for locate in (True, False):
+        e = conv[locate]
+        order = math.log(e[0] / e[-1]) / math.log(cfg["steps"][-1] / cfg["steps"][0])
+        L.append("")
+        L.append(f"Observed order ({'located' if locate else 'not located'}): {order:.2f} "
+                 f"(from N = {cfg['steps'][0]} to {cfg['steps'][-1]}).")
+    L.append("")
+    path.write_text("\n".join(L) + "\n")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="python -m bench.force_law", description=__doc__)
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--out", default=str(HERE / "FORCE_LAW.md"))
+    a = p.parse_args(argv)
+    warnings.simplefilter("ignore", fastrest.ValidityWarning)
+    cfg = dict(quick=a.quick, contacts=64 if a.quick else 256, path_steps=400 if a.quick else 2000,
+               rounds=5 if a.quick else 21, steps=STEPS[:4] if a.quick else STEPS)
+    t, frac, imp = cost(cfg, print)
+    conv = convergence(cfg, print)
+    write(t, frac, imp, conv, cfg, Path(a.out))
+    print(f"wrote {a.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,298 @@
+"""The contact law in the time domain: normal force from interference, with history.
+
+DEM and transient multi-asperity codes integrate the equations of motion and ask, at every time
+step, for the force of each contact at its current interference. The JGM ingredients answer it
+(normalised by the critical values of eqs 4-7: w = omega/omega_c, P* = P/P_c):
+
+* **virgin loading** (w above the largest interference reached so far, w_max): the Jackson-Green
+  law, Hertz P* = w^1.5 up to w = 1.9 (eq 14), JG's eq (9) above (it drops by ~0.16 % at 1.9);
+* **unloading and reloading** below w_max: elastic, eq (32), through (w_max, P*(w_max)) and the
+  residual interference w_res*(w_max) of the unloading model (eq 35 JCG, eq 33 Etsion, or
+  Brake's), P* = P_max ((w - w_res)/(w_max - w_res))^1.5, and 0 at or below w_res (the contact
+  has separated; the residual dent stays in the state). Passing w_max again continues on the
+  JG law. The elastic branch is a function of w alone: a closed unload/reload cycle below w_max
+  returns exactly the work put in.
+* **gaps**: w <= 0 before the first contact, or at or below w_res after it, gives 0. One corner
+  of the model: just above w* = 1.9, where the JG force exceeds Hertz's (nu below about 0.32)
+  and the model's e exceeds 1, Etsion's and Brake's w_res* is slightly negative (down to about
+  -0.01): the branch then pushes until w = w_res* < 0, as the model (and tmdsimpy) has it, so
+  that the rebound equals the model's e.
+
+One impact loaded to w_m and unloaded dissipates F(w_m) - P_m (w_m - w_res), in U_c units, which
+is (1 - e^2) V1*^2 of the energy balance (eq 38): integrated in time, this law reproduces the e of
+:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 9).
+
+The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted to eq (9)
+(:func:`fastrest.forward.P_table_forward`, ~1e-14 relative), the law's data being the material's
+:class:`fastrest.forward.ForwardData`.
+
+From Numba: ``law.data`` and :func:`contact_force` (re-exported by :mod:`fastrest.jit`), one
+state row of :data:`STATE_SIZE` float64 per contact, zeros for a virgin contact.
+"""
+import math
+
+import numpy as np
+
+from ._jit import jit
+from ._validation import as_float_array, check_eps_y, check_nu, real_scalar
+from .contact import W_SWITCH
+from .forward import P_table_forward, forward_data
+from .limits import raise_interference_out_of_range, w_upper_model
+from . import unloading as _unloading
+from .unloading import elastic
+
+__all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time",
+           "impact_in_time"]
+
+#: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res*, and
+#: delta = w_max - w_res* (0 until the contact first unloads from w_max).
+STATE_SIZE = 4
+
+
+@jit(inline=True)
+def contact_force(law, state, w):
+    """Normal force P* = P/P_c at interference w = omega/omega_c, updating the contact's history.
+
+    Parameters
+    ----------
+    law : ForwardData
+        ``ContactLaw.data`` of the material (:func:`contact_law`).
+    state : float64 array of :data:`STATE_SIZE`
+        This contact's history; zeros for a virgin contact. Updated in place.
+    w : float
+        Current interference (-); w <= 0 is a gap (force 0; after a contact, below w_res*).
+
+    Returns
+    -------
+    float
+        P* (-). NaN for NaN w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
+        the unloading model) or an unknown unloading model; the state is then set to NaN (the
+        contact's history is lost: every later call gives NaN until the row is zeroed).
+    """
+    w_max = state[0]
+    if w > w_max:  # virgin loading, on the JG law
+        p = P_table_forward(law, w)
+        if p == p:
+            state[0] = w
+            state[1] = p
+            state[3] = 0.0  # residual of the new maximum: computed when the contact unloads
+            return p
+    elif w_max > 0.0:  # unloading or reloading below w_max: elastic, eq (32); 0 below w_res
+        if state[3] == 0.0:
+            w_res, delta = _unloading.residual(law.model, w_max, w_max - 1.0, state[1], law.eps_y, law.nu)
+            state[2] = w_res
+            state[3] = delta
+        if w == w:
+            return elastic.force(w, w_max, state[1], state[2], state[3])
+    elif w <= 0.0 and w_max == 0.0:  # a gap before first contact
+        return 0.0
+    state[0] = state[1] = state[2] = state[3] = np.nan  # left the model's domain: history lost
+    return np.nan
+
+
+@jit
+def _force_path(law, state, w, out):
+    for i in range(w.size):
+        out[i] = contact_force(law, state, w[i])
+
+
+@jit
+def hertz_contact_time(v1_star):
+    """Duration of a Hertz impact at V1*, in the law's time unit omega_c/V_c (-).
+
+    tau_c = 2 I V1*^(-1/5), I = int_0^1 (1 - x^2.5)^(-1/2) dx = Gamma(7/5) Gamma(1/2)/Gamma(9/10);
+    in seconds t_c = tau_c omega_c/V_c, the classic 2.868 (m'^2/(R' E'^2 V1))^(1/5).
+    """
+    return 2.0 * _HERTZ_HALF_TIME * v1_star ** -0.2
+
+
+_HERTZ_HALF_TIME = math.gamma(1.4) * math.sqrt(math.pi) / math.gamma(0.9)
+
+
+@jit
+def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
+    """One impact integrated in time with velocity Verlet and :func:`contact_force`.
+
+    Normalised equation of motion: d^2w/dtau^2 = -(5/4) P*(w), tau = t V_c/omega_c, from w = 0 at
+    speed V1*; the step is ``hertz_contact_time(v1_star) / steps_per_contact``. With
+    ``locate_switch`` the step that crosses w = 1.9 on virgin loading (where the JG law jumps by
+    ~0.16 %) is split there, which keeps the scheme second order; without, it is first order.
+
+    Returns (e, w_max, steps): rebound speed over impact speed, largest interference, steps taken.
+    ``state`` (STATE_SIZE) is reset and left as the contact's final history.
+    """
+    for k in range(STATE_SIZE):
+        state[k] = 0.0
+    dt = hertz_contact_time(v1_star) / steps_per_contact
+    w = 0.0
+    v = v1_star
+    a = 0.0
+    n = 0
+    while n < 1000 * steps_per_contact:
+        n += 1
+        h = dt
+        w_new = w + v * h + 0.5 * a * h * h
+        if locate_switch and w < W_SWITCH and w_new > W_SWITCH and w >= state[0]:
+            # land exactly on w = 1.9 (the root of w + v t + a t^2/2 = 1.9 in (0, h)), then restart
+            # from there with the JG side's acceleration
+            c = w - W_SWITCH
+            disc = v * v - 2.0 * a * c
+            t1 = -2.0 * c / (v + math.sqrt(disc))
+            a1 = -1.25 * contact_force(law, state, W_SWITCH)
+            v += 0.5 * (a + a1) * t1
+            w = W_SWITCH
+            a = -1.25 * P_table_forward(law, np.nextafter(W_SWITCH, math.inf))
+            h = dt - t1
+            w_new = w + v * h + 0.5 * a * h * h
+        p = contact_force(law, state, w_new)
+        a_new = -1.25 * p
+        v += 0.5 * (a + a_new) * h
+        w = w_new
+        a = a_new
+        if p != p:
+            return np.nan, np.nan, n
+        if p == 0.0 and v < 0.0 and n > 1:
+            return -v / v1_star, state[0], n
+    return np.nan, state[0], n
+
+
+class ContactLaw:
+    """The time-domain contact law of one material and unloading model (see the module doc).
+
+    Build with :func:`contact_law` (normalised) or :meth:`fastrest.Impact.contact_law`
+    (dimensional: interferences in m, forces in N).
+
+    Attributes
+    ----------
+    eps_y, nu : float
+        Material (-).
+    unloading : str
+        Unloading model name.
+    w_max : float
+        Largest interference w* = omega/omega_c the law serves (-).
+    omega_c, P_c : float
+        Units of :meth:`force`: its interferences are divided by ``omega_c`` and its forces
+        multiplied by ``P_c`` (1.0 and 1.0 for a normalised law).
+    data : ForwardData
+        For :func:`fastrest.jit.contact_force` in Numba code.
+    """
+
+    def __init__(self, eps_y, nu, unloading, extrapolate, data, omega_c=1.0, P_c=1.0):
+        self.eps_y, self.nu, self.unloading, self.extrapolate = eps_y, nu, unloading, extrapolate
+        self.data, self.omega_c, self.P_c = data, float(omega_c), float(P_c)
+        self.w_max = data.w_max
+
+    def __repr__(self):
+        units = "" if self.omega_c == 1.0 and self.P_c == 1.0 else f", omega_c={self.omega_c!r} m, P_c={self.P_c!r} N"
+        return (f"ContactLaw(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
+                f"w_max={self.w_max!r}{units})")
+
+    def new_state(self, n=None):
+        """Zeros: the history of ``n`` virgin contacts, shape (n, STATE_SIZE) (or one row)."""
+        return np.zeros(STATE_SIZE if n is None else (int(n), STATE_SIZE))
+
+    def force(self, interference, state=None):
+        """Forces along a path of interferences in time order, from a virgin contact.
+
+        Parameters
+        ----------
+        interference : array_like
+            Interferences in time order: w* (-) for a normalised law, omega (m) for one from
+            :meth:`fastrest.Impact.contact_law`. Values <= 0 are gaps (force 0).
+        state : ndarray, optional
+            A contact's history (:meth:`new_state`) to start from instead of a virgin contact;
+            updated in place.
+
+        Returns
+        -------
+        ndarray
+            P* (-), or P (N) for a dimensional law, at each point.
+
+        Raises
+        ------
+        TypeError
+            Non-numbers.
+        ValueError
+            NaN or infinite interference, or one past the law's end (the message names it).
+        """
+        x = as_float_array(interference, "interference")
+        w = np.ascontiguousarray(x, dtype=np.float64).ravel() / self.omega_c
+        bad = ~np.isfinite(w)
+        if bad.any():
+            raise ValueError(f"interference must be finite; got {float(w[bad][0] * self.omega_c)!r}")
+        if state is None:
+            state = self.new_state()
+        elif not (isinstance(state, np.ndarray) and state.dtype == np.float64 and state.shape == (STATE_SIZE,)
+                  and state.flags.c_contiguous):
+            raise ValueError(f"state must be a float64 array of shape ({STATE_SIZE},) (ContactLaw.new_state())")
+        out = np.empty(w.size)
+        _force_path(self.data, state, w, out)
+        if np.isnan(out).any():
+            i = int(np.flatnonzero(np.isnan(out))[0])
+            raise_interference_out_of_range(max(w[i], self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
+                                            self.extrapolate, "interference", self.unloading)
+        return (out * self.P_c).reshape(x.shape)
+
+    def impact(self, v1_star, steps_per_contact=2000, locate_switch=True):
+        """e of one impact at V1* integrated in time with this law (:func:`impact_in_time`).
+
+        Returns a dict: ``e``, ``omega_m_star`` (largest interference), ``steps``, and the final
+        ``state``. For checking a time step: compare with :func:`fastrest.curve` ``.e(v1_star)``.
+        """
+        v = real_scalar(v1_star, "v1_star")
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"v1_star must be finite and > 0; got {v!r}")
+        n = real_scalar(steps_per_contact, "steps_per_contact")
+        if not (n.is_integer() and 10 <= n <= 1e8):
+            raise ValueError(f"steps_per_contact must be a whole number in [10, 1e8]; got {steps_per_contact!r}")
+        state = self.new_state()
+        e, wm, steps = impact_in_time(self.data, v, int(n), bool(locate_switch), state)
+        if not e == e:
+            raise_interference_out_of_range(max(wm, self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
+                                            self.extrapolate, "the impact's interference", self.unloading)
+        return {"e": float(e), "omega_m_star": float(wm), "steps": int(steps), "state": state}
+
+
+def contact_law(eps_y, nu, unloading="jcg", w_max=None, extrapolate=False, *, omega_c=1.0, P_c=1.0):
+    """Build the time-domain :class:`ContactLaw` of one material (normalised: w = omega/omega_c,
+    P* = P/P_c).
+
+    Parameters
+    ----------
+    eps_y : float
+        Sy/E' (-), > 0 (validated 0.0005-0.01).
+    nu : float
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5 (validated 0.2-0.45).
+    unloading : {"jcg", "etsion", "brake"}
+        Unloading model (residual interference), JGM eq (35), eqs (33)-(34), or Brake's.
+    w_max : float, optional
+        Largest interference w* to serve (-); only the cells up to it are built. Default: the
+        model's end (w* = 425, or a/R = 1 / the unloading model's end if earlier).
+    extrapolate : bool
+        Allow w* past 425 up to a/R = 1 (and the unloading model's end).
+
+    Returns
+    -------
+    ContactLaw
+
+    Raises
+    ------
+    TypeError, ValueError
+        Invalid material, unknown ``unloading``, or ``w_max`` past the model's end.
+    """
+    eps_y = real_scalar(eps_y, "eps_y")
+    nu = real_scalar(nu, "nu")
+    check_eps_y(eps_y)
+    check_nu(nu)
+    model = _unloading.get(unloading)
+    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model.code))
+    if w_max is None:
+        w_max = lim
+    else:
+        w_max = real_scalar(w_max, "w_max")
+        if not (w_max >= 0.0 and math.isfinite(w_max)):
+            raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
+        if w_max > lim:
+            raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max", model.name)
+    data = forward_data(eps_y, nu, w_max, model.name, extrapolate=bool(extrapolate))
+    return ContactLaw(eps_y, nu, model.name, bool(extrapolate), data, omega_c, P_c)

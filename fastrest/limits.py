@@ -1,0 +1,125 @@
+"""Where the model ends, and the errors that say so: one module for every API.
+
+Three limits bound the maximum interference w_m* = omega_m/omega_c:
+
+* w_m* = 425 (:data:`OMEGA_M_STAR_MAX`): the largest interference JGM computed (section 3.3);
+  ``extrapolate=True`` lifts it;
+* a/R = 1: the Jackson-Green law ends (eq 12 needs 0 < a/R < 1); its w* comes from
+  :func:`fastrest.contact.omega_star_limit_kernel`;
+* the end of the unloading model (``OMEGA_END`` of its unit in :mod:`fastrest.unloading`: JCG's
+  eq 35 at w_m* = 10017.5, where w_res reaches w_m; the others never end).
+
+Speed limits follow through the energy balance, V1*^2 = F(w_m*) (eq 29). Kernels return NaN past a
+limit; the Python layer raises through the functions below.
+"""
+import math
+
+import numpy as np
+
+from ._jit import jit
+from ._validation import OMEGA_M_STAR_MAX
+from .contact import omega_star_limit_kernel
+from .energy import f_star_kernel
+from . import unloading as _unloading
+
+__all__ = ["OMEGA_M_STAR_MAX", "w_upper", "w_upper_model", "omega_limit", "v1_star_limit",
+           "raise_out_of_range", "interference_limit_message", "raise_interference_out_of_range",
+           "EXTRAPOLATE_HINT"]
+
+EXTRAPOLATE_HINT = "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas"
+
+
+@jit
+def w_upper(eps_y, nu, extrapolate):
+    """Largest w* of the loading law: 425, or with extrapolation the point where a/R = 1."""
+    lim = omega_star_limit_kernel(eps_y, nu)
+    if extrapolate:
+        return lim
+    return min(OMEGA_M_STAR_MAX, lim)
+
+
+@jit
+def w_upper_model(eps_y, nu, extrapolate, model):
+    """:func:`w_upper`, and no further than unloading model ``model`` is defined (NaN if unknown)."""
+    end = _unloading.omega_end(model)
+    if not end > 0.0:
+        return np.nan
+    return min(w_upper(eps_y, nu, extrapolate), end)
+
+
+def _code(unloading):
+    return -1 if unloading is None else _unloading.get(unloading).code
+
+
+def omega_limit(eps_y, nu, extrapolate=False, unloading=None):
+    """Largest w_m* allowed for one material (-): 425, a/R = 1 extrapolating, and the end of the
+    ``unloading`` model (a name; None: the loading law alone)."""
+    e, n, x = float(eps_y), float(nu), bool(extrapolate)
+    return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
+
+
+def v1_star_limit(eps_y, nu, extrapolate=False, unloading=None):
+    """Largest V1* the model accepts for one material (-), through V1*^2 = F(w_m*) (eq 29) at
+    :func:`omega_limit`."""
+    w = omega_limit(eps_y, nu, extrapolate, unloading)
+    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
+
+
+def _past_law(lead, e, n, w_ar, at):
+    return ValueError(f"{lead} is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {e!r}, "
+                      f"nu = {n!r}: a/R reaches 1 at w* = {w_ar:.6g}{at}")
+
+
+def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None, V_c=None,
+                       hint=EXTRAPOLATE_HINT):
+    """Raise the ValueError for the first impact speed beyond the allowed range.
+
+    The one place that says which limit applies (w_m* = 425, a/R = 1, the end of the unloading
+    model). ``v``: speeds in the caller's unit, V1* or, with ``V_c`` (m/s), V1 in m/s; ``name``:
+    the caller's parameter they came from (e.g. ``v_max``); ``hint`` ends the w_m* = 425 message.
+    """
+    v, e, n = float(np.ravel(v)[0]), float(np.ravel(eps_y)[0]), float(np.ravel(nu)[0])
+    lead = f"{name} = {v!r}" if V_c is None else f"{name} = {v!r} m/s"
+
+    def at(v_star):
+        return f"V1* = {v_star:.10g}" if V_c is None else f"V1 = {v_star * V_c:.10g} m/s (V1* = {v_star:.6g})"
+
+    w_ar = float(omega_star_limit_kernel(e, n))
+    if unloading is not None:
+        model = _unloading.get(unloading)
+        if model.omega_end < w_ar and (extrapolate or model.omega_end < OMEGA_M_STAR_MAX):
+            lim = v1_star_limit(e, n, extrapolate, model)
+            if (v if V_c is None else v / V_c) > lim:
+                raise ValueError(
+                    f"{lead} is past the end of {model.short} unloading ({model.equation}) for "
+                    f"eps_y = {e!r}, nu = {n!r}: its w_res reaches w_m at w_m* = {model.omega_end:.6g}, "
+                    f"i.e. {at(lim)}, and e is undefined beyond (other unloading models go on to a/R = 1)")
+    if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
+        raise _past_law(lead, e, n, w_ar, f", i.e. {at(v1_star_limit(e, n, True))}")
+    raise ValueError(
+        f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
+        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(v1_star_limit(e, n))}. {hint}")
+
+
+def interference_limit_message(w, eps_y, nu, extrapolate, unloading=None):
+    """What an interference w* beyond the allowed range is past: the end of the unloading model,
+    a/R = 1, or w* = 425 (with the hint to extrapolate). A phrase: "is past the end of ..."."""
+    w, e, n = float(np.ravel(w)[0]), float(np.ravel(eps_y)[0]), float(np.ravel(nu)[0])
+    w_ar = float(omega_star_limit_kernel(e, n))
+    if unloading is not None:
+        model = _unloading.get(unloading)
+        if w > model.omega_end and model.omega_end < w_ar:
+            return (f"is past the end of {model.short} unloading ({model.equation}): its w_res "
+                    f"reaches w_m at w* = {model.omega_end:.6g}")
+    if extrapolate or w_ar <= OMEGA_M_STAR_MAX or w >= w_ar:
+        return (f"is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {e!r}, nu = {n!r}: "
+                f"a/R reaches 1 at w* = {w_ar:.6g}")
+    return (f"is beyond w* = {OMEGA_M_STAR_MAX:g}, the largest interference the model covers (JGM "
+            f"section 3.3); pass extrapolate=True to go up to a/R = 1 (w* = {w_ar:.6g}) with the same formulas")
+
+
+def raise_interference_out_of_range(w, eps_y, nu, extrapolate, name="w", unloading=None):
+    """Raise the ValueError for an interference w* = omega/omega_c beyond the allowed range (the APIs
+    that take w* directly: the loading law, the forward map, the contact law)."""
+    raise ValueError(f"{name} = {float(np.ravel(w)[0])!r} "
+                     + interference_limit_message(w, eps_y, nu, extrapolate, unloading))

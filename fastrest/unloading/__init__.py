@@ -1,0 +1,136 @@
+"""Unloading models: each one unit, registered here by name; every consumer asks the registry.
+
+A model is a module of this package with
+
+* ``NAME``, ``SHORT``, ``LABEL``, ``EQUATION``, ``REFERENCE``: its public name and citation;
+* ``OMEGA_END``: the w_m* where the model itself ends (``inf`` if it does not);
+* ``residual(wm, wm1, p, eps_y, nu) -> (w_res*, delta)``: the residual interference after loading
+  to w_m* = wm (wm1 = w_m* - 1 computed without cancellation, p = P_m*), delta = w_m* - w_res*;
+* ``restitution(f, wm, wm1, p, eps_y, nu) -> (e^2, 1 - e^2, w_res*, delta, R_res/R)`` for an
+  impact of loading energy f = F(w_m*) = V1*^2 past the elastic limit (w_m* > 1);
+
+all ``@jit(inline=True)`` scalar kernels. Unloading and reloading below w_m* follow eq (32) through
+(w_m*, P_m*) and w_res* (:mod:`fastrest.unloading.elastic`), the same for every model here.
+
+To add a model: write its module and list it in :data:`_UNITS` and in the three dispatchers
+below (its code is its position). Python code names a model by string (``unloading="jcg"``) and
+gets its :class:`UnloadingModel` from :func:`get`; jitted code passes the integer ``code``, and an
+unknown code gives NaN.
+"""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._jit import jit
+from ..contact import p_star_unchecked
+from . import brake, elastic, etsion, jcg
+
+__all__ = ["UnloadingModel", "MODELS", "NAMES", "JCG", "ETSION", "BRAKE", "get", "unloading_code",
+           "residual", "restitution", "omega_end", "restitution_kernel", "elastic"]
+
+_UNITS = (jcg, etsion, brake)
+JCG, ETSION, BRAKE = 0, 1, 2
+N_MODELS = len(_UNITS)
+
+
+@dataclass(frozen=True)
+class UnloadingModel:
+    """An unloading model as Python code sees it (the kernels live in its module).
+
+    Attributes
+    ----------
+    name : str
+        Public name (``unloading=`` argument).
+    short : str
+        Display name (``JCG``, ``Etsion``, ...).
+    code : int
+        Integer passed to jitted kernels (``fastrest.jit.JCG`` etc.).
+    label, equation, reference : str
+        What it is, its equation (short, for messages) and where it comes from.
+    omega_end : float
+        w_m* at which the model ends (``inf`` if never): past it e is undefined.
+    """
+
+    name: str
+    short: str
+    code: int
+    label: str
+    equation: str
+    reference: str
+    omega_end: float
+
+
+MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END))
+          for k, u in enumerate(_UNITS)}
+#: Public names in code order.
+NAMES = tuple(MODELS)
+
+
+def get(unloading):
+    """The :class:`UnloadingModel` called ``unloading`` (a name, or a model); ValueError otherwise."""
+    if isinstance(unloading, UnloadingModel):
+        return MODELS[unloading.name]
+    if isinstance(unloading, str) and unloading in MODELS:
+        return MODELS[unloading]
+    raise ValueError(f"unloading must be one of {NAMES}; got {unloading!r}")
+
+
+def unloading_code(unloading):
+    """The kernels' integer code of the model called ``unloading`` (ValueError if unknown)."""
+    return get(unloading).code
+
+
+# --- the dispatchers: the one place that maps a code to its unit ----------------------------------
+
+@jit(inline=True)
+def residual(code, wm, wm1, p, eps_y, nu):
+    """(w_res*, delta = w_m* - w_res*) of model ``code`` after loading to (wm, p); NaNs if unknown."""
+    if code == JCG:
+        return jcg.residual(wm, wm1, p, eps_y, nu)
+    if code == ETSION:
+        return etsion.residual(wm, wm1, p, eps_y, nu)
+    if code == BRAKE:
+        return brake.residual(wm, wm1, p, eps_y, nu)
+    return np.nan, np.nan
+
+
+@jit(inline=True)
+def restitution(code, f, wm, wm1, p, eps_y, nu):
+    """(e^2, 1 - e^2, w_res*, delta, R_res/R) of model ``code`` (w_m* > 1); NaNs if unknown."""
+    if code == JCG:
+        return jcg.restitution(f, wm, wm1, p, eps_y, nu)
+    if code == ETSION:
+        return etsion.restitution(f, wm, wm1, p, eps_y, nu)
+    if code == BRAKE:
+        return brake.restitution(f, wm, wm1, p, eps_y, nu)
+    return np.nan, np.nan, np.nan, np.nan, np.nan
+
+
+@jit
+def omega_end(code):
+    """w_m* where model ``code`` ends (inf if never); NaN for an unknown code."""
+    if code == JCG:
+        return jcg.OMEGA_END
+    if code == ETSION:
+        return etsion.OMEGA_END
+    if code == BRAKE:
+        return brake.OMEGA_END
+    return np.nan
+
+
+@jit
+def restitution_kernel(v, wm, wm1, eps_y, nu, model):
+    """(e, 1 - e^2, w_res*, R_res/R) at impact speed v = V1* with maximum interference wm.
+
+    ``wm1`` is wm - 1 computed accurately by the caller; V1* <= 1 (wm1 <= 0) is elastic: e = 1.
+    NaN in, or an unknown ``model`` code, gives NaN out.
+    """
+    if not (wm >= 0.0 and v >= 0.0):
+        return np.nan, np.nan, np.nan, np.nan
+    if wm1 <= 0.0:
+        if not (model >= 0 and model < N_MODELS):
+            return np.nan, np.nan, np.nan, np.nan
+        return 1.0, 0.0, 0.0, 1.0
+    e2, loss, w_res, _, r_res = restitution(model, v * v, wm, wm1, p_star_unchecked(wm, eps_y, nu), eps_y, nu)
+    return math.sqrt(e2), loss, w_res, r_res
