@@ -37,6 +37,7 @@ from ._jit import jit
 from ._validation import as_float_array, check_eps_y, check_nu, real_scalar
 from .contact import W_SWITCH
 from .forward import P_table_forward, forward_data
+from .interpolation import cell_index, cell_polynomial
 from .limits import raise_interference_out_of_range, w_upper_model
 from . import unloading as _unloading
 from .unloading import elastic
@@ -69,9 +70,18 @@ def contact_force(law, state, w):
         the unloading model) or an unknown unloading model; the state is then set to NaN (the
         contact's history is lost: every later call gives NaN until the row is zeroed).
     """
+    # every field of ``law`` is read here, unconditionally: read inside a rarely taken branch, a
+    # field made the caller's loop ~15x slower (Numba materialises the tuple; bench/FORCE_LAW.md)
+    model, eps_y, nu, w_end = law.model, law.eps_y, law.nu, law.w_max
+    rows, shift, base = law.p_rows, law.shift, law.base
     w_max = state[0]
-    if w > w_max:  # virgin loading, on the JG law
-        p = P_table_forward(law, w)
+    if w > w_max:  # virgin loading, on the JG law (P_table_forward's rule)
+        if w <= W_SWITCH:
+            p = w * math.sqrt(w)
+        elif w <= w_end:
+            p = cell_polynomial(rows, cell_index(w, shift, base), w)
+        else:
+            p = np.nan
         if p == p:
             state[0] = w
             state[1] = p
@@ -79,7 +89,7 @@ def contact_force(law, state, w):
             return p
     elif w_max > 0.0:  # unloading or reloading below w_max: elastic, eq (32); 0 below w_res
         if state[3] == 0.0:
-            w_res, delta = _unloading.residual(law.model, w_max, w_max - 1.0, state[1], law.eps_y, law.nu)
+            w_res, delta = _unloading.residual(model, w_max, w_max - 1.0, state[1], eps_y, nu)
             state[2] = w_res
             state[3] = delta
         if w == w:
@@ -118,8 +128,10 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
     ``locate_switch`` the step that crosses w = 1.9 on virgin loading (where the JG law jumps by
     ~0.16 %) is split there, which keeps the scheme second order; without, it is first order.
 
-    Returns (e, w_max, steps): rebound speed over impact speed, largest interference, steps taken.
-    ``state`` (STATE_SIZE) is reset and left as the contact's final history.
+    Returns (e, w_max, steps): rebound speed over impact speed, largest interference, steps taken;
+    e is NaN if a step went past the law's end (w_max is then the interference it tried: a coarse
+    step overshoots the maximum interference by O(dt^2)). ``state`` (STATE_SIZE) is reset and
+    left as the contact's final history.
     """
     for k in range(STATE_SIZE):
         state[k] = 0.0
@@ -150,7 +162,7 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
         w = w_new
         a = a_new
         if p != p:
-            return np.nan, np.nan, n
+            return np.nan, w_new, n  # past the law's end (or NaN): the interference it tried
         if p == 0.0 and v < 0.0 and n > 1:
             return -v / v1_star, state[0], n
     return np.nan, state[0], n
@@ -248,8 +260,13 @@ class ContactLaw:
         state = self.new_state()
         e, wm, steps = impact_in_time(self.data, v, int(n), bool(locate_switch), state)
         if not e == e:
-            raise_interference_out_of_range(max(wm, self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
-                                            self.extrapolate, "the impact's interference", self.unloading)
+            try:
+                raise_interference_out_of_range(max(wm, self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
+                                                self.extrapolate, "the impact's interference", self.unloading)
+            except ValueError as exc:
+                raise ValueError(f"{exc} (at V1* = {v!r} with {int(n)} steps per contact; near the "
+                                 "limit speed a coarse step overshoots the maximum interference: take "
+                                 "more steps)") from None
         return {"e": float(e), "omega_m_star": float(wm), "steps": int(steps), "state": state}
 
 

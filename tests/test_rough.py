@@ -24,7 +24,7 @@ from fastrest import forward as fw
 STEEL = Material(E=200e9, nu=0.3, Sy=1e9)
 R_A = 1e-4
 IP = fastrest.Impact(STEEL, R_A, mass=1.0)
-UNLOADINGS = ("jcg", "etsion")
+UNLOADINGS = ("jcg", "etsion", "brake")
 MATERIALS = [(0.0005, 0.2), (0.001, 0.25), (0.005, 0.33), (0.0066, 0.3), (0.01, 0.45)]
 
 
@@ -279,7 +279,7 @@ def gw_quad_reference(s, V1, M, model="jcg"):
     """Greenwood-Williamson by scipy quad (f_star_kernel integrand) and brentq, Gaussian heights."""
     eps, nu, r = s.eps_y, s.nu, s.sigma / s.omega_c
     N = s.n_summits
-    code = unloading.JCG if model == "jcg" else unloading.ETSION
+    code = unloading.get(model).code
     E = M * V1**2 / (2 * s.U_c)
     phi = lambda x: math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
 

@@ -45,8 +45,6 @@ def main(argv):
         ax.plot(w, p, color=colour, ls=ls, lw=1.6, label=f"{name}: unloading / reloading, eq (32)")
         print(f"{name:7s} after the loop: w_max* = {state[0]:.4g}, P*(w_max) = {state[1]:.5g}, "
               f"w_res* = {state[2]:.5g}")
-    for a, b in LEGS:
-        ax.annotate("", xy=(b, 0.0), xytext=(a, 0.0))
     ax.set_xlabel(r"interference $w^* = \omega/\omega_c$ [-]")
     ax.set_ylabel(r"normal force $P^* = P/P_c$ [-]")
     ax.set_title(rf"Contact law with history: path 0 $\to$ 20 $\to$ 8 $\to$ 30 $\to$ 0 "
