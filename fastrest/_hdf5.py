@@ -33,7 +33,7 @@ __all__ = ["FORMAT_NAME", "FORMAT_VERSION", "TableData", "TableFileError", "read
            "write_table"]
 
 FORMAT_NAME = "fastrest-table"
-FORMAT_VERSION = 2  # 2: two-level V1* cells (finer just above the kink)
+FORMAT_VERSION = 3  # 2: two-level V1* cells (finer just above the kink); 3: Lobatto nodes, unloading models list
 _CHECKSUM_ALGORITHM = "sha256"
 # Root attribute listing the attributes that hold JSON-encoded dicts, so that a
 # caller's plain string that happens to look like JSON is never decoded by mistake.

@@ -131,13 +131,23 @@ def _cmd_build(args):
             return 2
     else:
         out = args.out
+    from .table_error import DEFAULT_TOL
+
+    tol = args.tol if args.tol is not None else (DEFAULT_TOL if args.default else None)
     t0 = time.perf_counter()
-    table = tables.build(out, grid, progress=None if args.progress else False)
+    table = tables.build(out, grid, progress=None if args.progress else False, tol=tol)
     dt = time.perf_counter() - t0
-    print(f"wrote {table.path} in {dt:.1f} s")
-    for name, err in table.attrs.get("measured_error", {}).items():
-        print(f"  max relative error {name:<13s} {err['max_rel_error']:.2e}")
+    print(f"wrote {table.path} in {dt:.1f} s" + (f" (tol {tol:g})" if tol is not None else ""))
+    _print_errors(table.attrs.get("measured_error", {}))
     return 0
+
+
+def _print_errors(errors):
+    for name, err in errors.items():
+        metric = err.get("metric", "relative")
+        note = "" if metric == "relative" else f" ({metric})"
+        print(f"  max relative error {name:<13s} {err['max_rel_error']:.2e}{note} at V1*={err['at_v1_star']:.6g} "
+              f"eps_y={err['at_eps_y']:.4g} nu={err['at_nu']:.4g}")
 
 
 def _cmd_info(args):
@@ -165,9 +175,7 @@ def _cmd_info(args):
           f"up to V1* = {a['cells']['v1_star_top']:.6g}; closed form below 1.9^1.25")
     q = a["quadrature"]
     print(f"  quadrature: {q['rule']}, {q['order']} points per panel <= {q['panel_width_ln_w']} in ln w")
-    for name, err in a.get("measured_error", {}).items():
-        print(f"  max relative error {name:<13s} {err['max_rel_error']:.2e} at V1*={err['at_v1_star']:.6g} "
-              f"eps_y={err['at_eps_y']:.4g} nu={err['at_nu']:.4g}")
+    _print_errors(a.get("measured_error", {}))
     print(f"  checksum ({a['checksum_algorithm']}): {a['checksum']}")
     return 0
 
@@ -270,6 +278,9 @@ def main(argv=None):
     pb.add_argument("--eps-y-blocks", dest="eps_y_blocks", type=_parse_blocks, metavar="V:N,V:N",
                     help="cells ending at or below V1* = V (a power of two) use N nodes in C(nu) eps_y; "
                          f"'none' for --n-eps-y everywhere [default: {blocks}]")
+    pb.add_argument("--tol", type=float, metavar="TOL",
+                    help="refine node counts until the measured error meets TOL (relative; a 1 - e^2 that "
+                         "changes sign: relative to max(|1 - e^2|, 0.1)); --default uses 1e-9")
     pb.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     pb.set_defaults(func=_cmd_build)
 

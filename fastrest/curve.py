@@ -26,7 +26,8 @@ from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
-from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits
+from .interpolation import (MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits,
+                            share_edges)
 from .limits import raise_out_of_range, v1_star_limit, w_upper_model
 from . import unloading as _unloading
 
@@ -95,8 +96,9 @@ N_HERTZ = HERTZ_EDGES.shape[0]
 def hertz_rows(model):
     """Cell rows (w_m*, e, (1 - e^2)/(V1* - 1)) of the closed forms over 1 < V1* <= 1.9^1.25."""
     nodes = chebyshev_nodes(HERTZ_EDGES)
+    nodes[0, 0] = np.nextafter(1.0, 2.0)  # (1 - e^2)/(V1* - 1) is 0/0 at 1: its limit, one ulp in
     vals = hertz_node_values(nodes.ravel(), model).reshape((3,) + nodes.shape)
-    return fit_cells(HERTZ_EDGES, vals)
+    return fit_cells(HERTZ_EDGES, share_edges(vals))
 
 
 # --- scalar kernels on CurveData (the public njit API re-exports these) ----------------------
@@ -205,18 +207,26 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     if v_max <= V_SWITCH:  # closed forms only
         return CurveData(model, float(v_max), shift, 0, *[np.ascontiguousarray(h) for h in hertz])
     base, edges = cell_edges(V_SWITCH, v_max, bits_per_octave)
-    nodes = chebyshev_nodes(edges)
-    flat = nodes.ravel()
+    flat = jg_nodes(edges, v_max)
     if jg_values is None:
         w = np.empty(flat.size)
         omega_m_sorted_kernel(flat, eps_y, nu, w_hi, w)
         vals = np.concatenate([w[None], _restitution_at(flat, w, eps_y, nu, model)])
     else:
         vals = np.asarray(jg_values(flat))
-    rows = [np.ascontiguousarray(np.concatenate([h, fit_cells(edges, q.reshape(nodes.shape))]))
-            for h, q in zip(hertz, vals)]
+    vals = share_edges(vals.reshape(3, edges.shape[0], -1))
+    rows = [np.ascontiguousarray(np.concatenate([h, fit_cells(edges, q)])) for h, q in zip(hertz, vals)]
     # JG cell of key k is row k - base + N_HERTZ
     return CurveData(model, float(v_max), shift, int(base) - N_HERTZ, *rows)
+
+
+def jg_nodes(edges, v_top):
+    """The cells' interpolation points above the kink, flattened and increasing, kept inside
+    (1.9^1.25, v_top]: the first cell's left end takes the JG side's limit (one ulp above the
+    kink), and in cells a few ulp wide no rounded point falls outside (nodes an ulp from where the
+    fit places them change values by ~1e-16 relative)."""
+    nodes = chebyshev_nodes(edges)
+    return np.ascontiguousarray(np.clip(nodes, np.nextafter(V_SWITCH, np.inf), v_top).ravel())
 
 
 @nb.njit(cache=True)

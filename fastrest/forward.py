@@ -54,7 +54,7 @@ from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, 
 from .energy import F_SWITCH, jg_integral
 from .limits import raise_interference_out_of_range, w_upper
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
-                            chebyshev_nodes, fit_cells, row_polynomial)
+                            chebyshev_nodes, fit_cells, row_polynomial, share_edges)
 from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
 
 __all__ = ["ForwardData", "forward_data", "forward_limit", "F_forward", "P_forward",
@@ -273,6 +273,6 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
     _f_march(flat, eps_y, nu, f_vals)
     p_vals = np.empty(nodes.size)
     _p_nodes(flat, eps_y, nu, p_vals)
-    f_rows = np.ascontiguousarray(fit_cells(edges, f_vals.reshape(nodes.shape)))
-    p_rows = np.ascontiguousarray(fit_cells(edges, p_vals.reshape(nodes.shape)))
+    f_rows = np.ascontiguousarray(fit_cells(edges, share_edges(f_vals.reshape(nodes.shape))))
+    p_rows = np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
     return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows)

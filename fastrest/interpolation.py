@@ -8,9 +8,13 @@ within one, with relative width between 2^-K and 2^(1-K).
 
 Each cell stores one 64-byte row ``[center, 1/half_width, c0, ..., c5]``; the value is the degree-5
 polynomial sum c_k u^k in u = (v - center)/half_width in [-1, 1], interpolating the function at the
-cell's 6 Chebyshev points (first kind, so never at the cell's ends, where the JG law switches
-branch). A cell boundary sits exactly at V1* = 1.9^1.25 and the last cell ends at v_max, so no cell
-straddles the kink at w* = 1.9 or the end of the domain.
+cell's 6 Chebyshev-Lobatto points cos(k pi/5) (:data:`CHEB_U`), which include both ends: neighbouring
+cells interpolate the same value at their shared edge, so the piecewise polynomial is continuous
+there to a few ulp (and a monotone function stays monotone across cell edges). A cell boundary sits
+exactly at V1* = 1.9^1.25 and the last cell ends at v_max, so no cell straddles the kink at w* = 1.9
+or the end of the domain; a cell starting at the kink takes the JG side's limit there (the builders
+evaluate that node one ulp inside the cell). :data:`GAUSS_U` (first-kind Chebyshev points, never at
+the ends) serves functions that may not be evaluated at a cell's ends (a user's height pdf).
 """
 
 import numba as nb
@@ -23,9 +27,14 @@ DEGREE = 5
 ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
 MANTISSA_BITS = 52
 
-# Chebyshev points of the first kind on [-1, 1] and the map from values there to monomial coefficients.
-CHEB_U = np.cos(np.pi * (np.arange(DEGREE + 1)[::-1] + 0.5) / (DEGREE + 1))
-VALUES_TO_COEFFS = np.linalg.inv(np.vander(CHEB_U, DEGREE + 1, increasing=True))
+#: Chebyshev-Lobatto points on [-1, 1] (both ends included), increasing; the ends exactly -1 and 1.
+CHEB_U = -np.cos(np.pi * np.arange(DEGREE + 1) / DEGREE)
+CHEB_U[0], CHEB_U[-1] = -1.0, 1.0
+#: Chebyshev points of the first kind (interior only).
+GAUSS_U = np.cos(np.pi * (np.arange(DEGREE + 1)[::-1] + 0.5) / (DEGREE + 1))
+_TO_COEFFS = {id(CHEB_U): np.linalg.inv(np.vander(CHEB_U, DEGREE + 1, increasing=True)),
+              id(GAUSS_U): np.linalg.inv(np.vander(GAUSS_U, DEGREE + 1, increasing=True))}
+VALUES_TO_COEFFS = _TO_COEFFS[id(CHEB_U)]
 
 
 @intrinsic
@@ -101,15 +110,28 @@ def two_level_cells(v_lo, v_split, v_hi, bits_fine, bits):
     return base_f, base - fine.shape[0], np.concatenate([fine, coarse])
 
 
-def chebyshev_nodes(edges):
-    """The Chebyshev points of every cell, shape (ncell, DEGREE + 1), increasing."""
+def chebyshev_nodes(edges, u=CHEB_U):
+    """The interpolation points of every cell, shape (ncell, DEGREE + 1), increasing; with the
+    default Lobatto points the first and last are the cell's edges exactly (shared with the
+    neighbours)."""
     center = 0.5 * (edges[:, 0] + edges[:, 1])
     half = 0.5 * (edges[:, 1] - edges[:, 0])
-    return center[:, None] + half[:, None] * CHEB_U[None, :]
+    nodes = center[:, None] + half[:, None] * u[None, :]
+    if u is CHEB_U:
+        nodes[:, 0], nodes[:, -1] = edges[:, 0], edges[:, 1]
+    return nodes
 
 
-def values_to_coeffs(values):
-    """Monomial coefficients (in u) of the degree-5 polynomials through values at CHEB_U (last axis).
+def share_edges(values):
+    """Make each cell's first value the previous cell's last (last axis: nodes, the one before:
+    cells): the two are the same point, and a marching solver may have computed them an ulp apart."""
+    values[..., 1:, 0] = values[..., :-1, -1]
+    return values
+
+
+def values_to_coeffs(values, u=CHEB_U):
+    """Monomial coefficients (in u) of the degree-5 polynomials through values at the points ``u``
+    (default :data:`CHEB_U`; last axis).
 
     The values' first entry is taken out before the matrix product and added back to c0: the
     higher coefficients are then computed from differences, which are exact and small, instead of
@@ -117,13 +139,13 @@ def values_to_coeffs(values):
     what it interpolates). A constant cell gets exactly [value, 0, ..., 0].
     """
     ref = values[..., :1]
-    coeffs = (values - ref) @ VALUES_TO_COEFFS.T
+    coeffs = (values - ref) @ _TO_COEFFS[id(u)].T
     coeffs[..., 0] += ref[..., 0]
     return coeffs
 
 
-def fit_cells(edges, values):
-    """Rows [center, 1/half_width, c0..c5] from function values at :func:`chebyshev_nodes`.
+def fit_cells(edges, values, u=CHEB_U):
+    """Rows [center, 1/half_width, c0..c5] from function values at :func:`chebyshev_nodes` (points ``u``).
 
     ``values`` has shape (..., ncell, DEGREE + 1); the result (..., ncell, ROW).
     """
@@ -132,7 +154,7 @@ def fit_cells(edges, values):
     rows = np.empty(values.shape[:-1] + (ROW,))
     rows[..., 0] = center
     rows[..., 1] = 1.0 / half
-    rows[..., 2:] = values_to_coeffs(values)
+    rows[..., 2:] = values_to_coeffs(values, u)
     return rows
 
 

@@ -39,7 +39,7 @@ from . import forward as fw
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning,
                           check_finite_positive, warn, warn_if_outside_validated)
 from .contact import W_SWITCH
-from .interpolation import chebyshev_nodes, fit_cells, cell_polynomial
+from .interpolation import GAUSS_U, chebyshev_nodes, fit_cells, cell_polynomial
 from .limits import interference_limit_message
 from .materials import Impact, Material
 from .unloading import unloading_code
@@ -820,14 +820,14 @@ def _gw_data(gw, omega_c):
     ncell = max(4, int(math.ceil((s_hi - s_lo) * PDF_CELLS_PER_SIGMA)))
     edges_s = np.linspace(s_lo, s_hi, ncell + 1)
     edges = np.stack([edges_s[:-1], edges_s[1:]], axis=1)
-    nodes = chebyshev_nodes(edges)
+    nodes = chebyshev_nodes(edges, GAUSS_U)  # a pdf need not be defined at its support's ends
     try:
         vals = np.asarray(gw.pdf(nodes * scale), dtype=np.float64) * scale
     except Exception:  # not vectorised
         vals = np.array([float(gw.pdf(float(z))) for z in (nodes * scale).ravel()]).reshape(nodes.shape) * scale
     if vals.shape != nodes.shape or not np.all(np.isfinite(vals)) or np.any(vals < 0):
         raise ValueError("pdf must return finite, non-negative densities on its support")
-    rows = fit_cells(edges, vals)
+    rows = fit_cells(edges, vals, GAUSS_U)
     # exact integrals of the cell polynomials: half * sum over even k of c_k 2/(k+1)
     half = 0.5 * (edges[:, 1] - edges[:, 0])
     k = np.arange(6)

@@ -33,11 +33,11 @@ from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
 from .critical import c_of_nu
-from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
+from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows, jg_nodes
 from .direct import impact_array
 from .limits import raise_out_of_range, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
-from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, chebyshev_nodes, fma,
+from .interpolation import (CHEB_U, DEGREE, MANTISSA_BITS, cell_index, cell_polynomial, fma, share_edges,
                             two_level_cells, two_level_index, values_to_coeffs)
 from . import unloading as _unloading
 from .unloading import N_MODELS, restitution_kernel
@@ -59,15 +59,16 @@ EPS_Y_AR_BINDS = 0.0102
 OMEGA_GRID_HERTZ = 20  # nodes of the W* grid on [0, 1.9]
 OMEGA_GRID_JG = 236    # log-spaced nodes on [1.9, 425]
 
-#: Default grid of the shipped table (validated range of JGM; spacing chosen by measuring the
-#: error of several grids, reported in bench/RESULTS.md). The error across materials grows with
-#: V1* (the law's cos(pi a/R) term varies fastest near w* = 425), so the cells up to V1* = 128,
-#: 256, 512 carry 24, 32, 40 nodes in C(nu) eps_y and the top octaves 72 (measured per octave:
-#: each block's worst error <= ~5e-10); W* is stored on its own plain-eps_y grid (n_eps_y_energy).
-DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=72,
-                    nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=6, bits_per_octave=3,
-                    fine_bits_per_octave=4, fine_v1_star_max=8.0, c_eps_y_map_rate=30.0,
-                    eps_y_blocks=[[128.0, 24], [256.0, 32], [512.0, 40]], n_eps_y_energy=32)
+#: Default grid of the shipped table: what `fastrest build --tol 1e-9` reaches from the earlier
+#: grid (24/32/40/72 nodes in C(nu) eps_y, 6 in nu, fine cells up to V1* = 8) on the adversarial
+#: sample of fastrest.table_error: the cells up to V1* = 128, 256, 512 carry 28, 32, 47 nodes in the
+#: mapped C(nu) eps_y and the top octaves 85 (the law's cos(pi a/R) term varies fastest near
+#: w* = 425), 8 nodes in nu, 2^4 cells per octave up to V1* = 16 (the Etsion and Brake 1 - e^2 near
+#: V1* = 8-16 and just above the switch). W* is stored on its own plain-eps_y grid (n_eps_y_energy).
+DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=85,
+                    nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=8, bits_per_octave=3,
+                    fine_bits_per_octave=4, fine_v1_star_max=16.0, c_eps_y_map_rate=30.0,
+                    eps_y_blocks=[[128.0, 28], [256.0, 32], [512.0, 47]], n_eps_y_energy=32)
 
 
 def default_table_path():
@@ -242,15 +243,20 @@ def grid_axes(g):
 
 def eps_y_blocks(g, edges):
     """The non-empty blocks of cells with their own C(nu) eps_y axis: list of dicts
-    (cell0, cell1: cell range; n: nodes; c_eps_y: the axis; eps_y: (n, n_nu) eps_y of each node)."""
+    (cell0, cell1: cell range; cstop: cells stored, cell1 + 1 but for the last block, whose grid
+    also holds the next block's first cell for the blend across the boundary (:func:`_cell_value`);
+    n: nodes; c_eps_y: the axis; eps_y: (n, n_nu) eps_y of each node)."""
     nus = np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
     out, c0 = [], 0
     for v_end, n in g["eps_y_blocks"] + [[math.inf, g["n_eps_y"]]]:
         c1 = int(np.searchsorted(edges[:, 1], v_end, side="right"))
         if c1 > c0:
             s = s_of_xi(np.linspace(*xi_range(g), n), g["c_eps_y_map_rate"])
-            out.append(dict(cell0=c0, cell1=c1, n=n, c_eps_y=s, eps_y=s[:, None] / yield_parameter(1.0, nus)[None, :]))
+            out.append(dict(cell0=c0, cell1=c1, cstop=c1, n=n, c_eps_y=s,
+                            eps_y=s[:, None] / yield_parameter(1.0, nus)[None, :]))
             c0 = c1
+    for b in out[:-1]:
+        b["cstop"] = b["cell1"] + 1
     return out
 
 
@@ -269,7 +275,7 @@ def generate(grid=None, progress=None):
     _, _, nus, v_top, layout, omega = grid_axes(g)
     edges = layout["edges"]
     eps_w = np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y_energy"])  # W* grid: plain eps_y
-    nodes = chebyshev_nodes(edges)
+    nodes = jg_nodes(edges, v_top).reshape(edges.shape[0], -1)
     blocks = eps_y_blocks(g, edges)
     jobs = [(b, i) for b in blocks for i in range(b["n"])] + [(None, i) for i in range(eps_w.size)]
     if progress is not False:
@@ -279,17 +285,17 @@ def generate(grid=None, progress=None):
         except ImportError:
             pass
     for b in blocks:
-        b["values"] = np.empty((len(QUANTITIES), b["n"], nus.size, b["cell1"] - b["cell0"], DEGREE + 1))
+        b["values"] = np.empty((len(QUANTITIES), b["n"], nus.size, b["cstop"] - b["cell0"], DEGREE + 1))
     w_star = np.empty((eps_w.size, nus.size, omega.size))
     for b, i in jobs:
         if b is None:  # W* = 1 - F at eps_w[i]
             _generate_row(np.full(nus.size, eps_w[i]), nus, nodes[:0].ravel(), omega,
                           np.empty((len(QUANTITIES), nus.size, 0)), w_star[i])
             continue
-        flat = nodes[b["cell0"]:b["cell1"]].ravel()
+        flat = nodes[b["cell0"]:b["cstop"]].ravel()
         out = np.empty((len(QUANTITIES), nus.size, flat.size))
         _generate_row(b["eps_y"][i], nus, flat, omega[:0], out, np.empty((nus.size, 0)))
-        b["values"][:, i] = out.reshape(out.shape[:2] + (-1, DEGREE + 1))
+        b["values"][:, i] = share_edges(out.reshape(out.shape[:2] + (-1, DEGREE + 1)))
     v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
     return dict(grid=g, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=layout["base_fine"],
                 base=layout["base"], edges=edges, nodes=nodes, blocks=blocks,
@@ -382,22 +388,43 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     s = c_of_nu(nu) * eps_y
     xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
     b = tab.cell_block[cell]
-    n = tab.block_n[b]
-    i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, tab.xi0, tab.block_inv_h[b], n)
-    j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
-    we = (e0, e1, e2, e3, e4, e5)
-    wn = (n0, n1, n2, n3, n4, n5)
-    row = 6 * tab.n_nu  # one eps_y node's coefficients
-    first = tab.block_offset[b] + ((cell - tab.block_cell0[b]) * n + i) * row + 6 * j
     w_lim = OMEGA_LIMIT
     if check_limit and v > tab.v_safe:
         if eps_y > EPS_Y_AR_BINDS:  # the law may end (a/R = 1) before w* = 425
             w_lim = min(w_lim, omega_star_limit_kernel(eps_y, nu) * (1.0 + OMEGA_LIMIT_TOL))
-        if q != 0 and not _stencil_sum(tab.coef, first, row, u, we, wn) <= w_lim:
+        if q != 0 and not _cell_value(tab, 0, b, cell, u, xi, nu) <= w_lim:
             return np.nan
-    r = _stencil_sum(tab.coef, first + q * tab.block_qstride[b], row, u, we, wn)
+    r = _cell_value(tab, q, b, cell, u, xi, nu)
     if check_limit and q == 0 and not r <= w_lim:
         return np.nan
+    return r
+
+
+@nb.njit(cache=True, inline="always")
+def _block_value(tab, q, b, cell, u, xi, nu):
+    """Quantity q in ``cell`` interpolated across materials on block b's grid."""
+    n = tab.block_n[b]
+    i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, tab.xi0, tab.block_inv_h[b], n)
+    j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    row = 6 * tab.n_nu  # one eps_y node's coefficients
+    first = tab.block_offset[b] + ((cell - tab.block_cell0[b]) * n + i) * row + 6 * j
+    return _stencil_sum(tab.coef, first + q * tab.block_qstride[b], row, u,
+                        (e0, e1, e2, e3, e4, e5), (n0, n1, n2, n3, n4, n5))
+
+
+@nb.njit(cache=True, inline="always")
+def _cell_value(tab, q, b, cell, u, xi, nu):
+    """Quantity q at local coordinate u of ``cell`` (block b). The first cell of a block b > 0
+    blends, with a smoothstep in u, from the previous block's material grid at its left edge (where
+    the previous cell ends on that grid) to its own grid at its right edge: the table is continuous
+    to a few ulp across the block boundary although the two grids interpolate materials
+    differently (they differ by up to the table's error, ~1e-10)."""
+    r = _block_value(tab, q, b, cell, u, xi, nu)
+    if cell == tab.block_cell0[b] and b > 0:
+        r0 = _block_value(tab, q, b - 1, cell, u, xi, nu)
+        t = 0.5 * (u + 1.0)
+        t = min(max(t, 0.0), 1.0)
+        r = r0 + t * t * (3.0 - 2.0 * t) * (r - r0)
     return r
 
 
@@ -582,37 +609,14 @@ class Table:
         return self._scalar(2 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
     # --- accuracy against the direct solver ---
-    def measure_error(self, n_points=4000, seed=12345):
-        """Worst relative error of every quantity against the direct solver (dict).
+    def measure_error(self, points=None):
+        """Worst error of every quantity against the direct solver, on the adversarial sample of
+        :func:`fastrest.table_error.adversarial_points` (edges, corners, every cell boundary +/- 1
+        ulp, the last cell) unless ``points`` = (v1_star, eps_y, nu) is given. A dict; see
+        :func:`fastrest.table_error.measure`."""
+        from .table_error import measure
 
-        Random points uniform in (eps_y, nu) over the table and log-uniform in V1* in (1, V1*_max]
-        of each material, plus the hard cases (V1* -> 1, both sides of 1.9^1.25, V1*_max). For a
-        loss that changes sign (Etsion's and Brake's, where e > 1 just above V1* = 1.9^1.25) the
-        error is relative to max(|1 - e^2|, 1e-3).
-        """
-        v, e, n = sample_points(self.grid, n_points, seed)
-        nq = self.data.n_quantities
-        ref = np.empty((nq, v.size))
-        got = np.empty((nq, v.size))
-        for m in range((nq - 1) // 2):
-            sol = np.empty((5, v.size))
-            impact_array(v, e, n, m, False, sol)
-            ref[0] = sol[0]
-            ref[1 + 2 * m] = sol[1]
-            ref[2 + 2 * m] = sol[2]
-        for q in range(nq):
-            _interpolant_array(self.data, q, v, e, n, got[q])
-        errs = {}
-        for q, name in enumerate(QUANTITIES[:nq]):
-            floor = 1e-3 if name.startswith("loss_") and np.any(ref[q] < 0) else 0.0
-            den = np.maximum(np.abs(ref[q]), floor)
-            ok = den > 0
-            err = np.abs(got[q] - ref[q])
-            rel = np.where(ok, err / np.where(ok, den, 1.0), err)
-            k = int(np.nanargmax(rel)) if np.isfinite(rel).all() else int(np.argmax(~np.isfinite(rel)))
-            errs[name] = {"max_rel_error": float(rel[k]), "at_v1_star": float(v[k]),
-                          "at_eps_y": float(e[k]), "at_nu": float(n[k])}
-        return errs
+        return measure(self, points)
 
 
 def sample_points(grid, n_points, seed):
@@ -654,7 +658,7 @@ def write(gen, path, errors=None):
         "eps_y": (gen["eps_y"], "1", "yield strain Sy/E' (JGM eq 11)"),
         "nu": (gen["nu"], "1", "Poisson's ratio of the yielding material"),
         "cell": (gen["edges"][:, 0], "1", "V1* = V1/V_c at the start of each interpolation cell"),
-        "node": (CHEB_U, "1", "Chebyshev point of the cell, in [-1, 1] across the cell"),
+        "node": (CHEB_U, "1", "Chebyshev-Lobatto point of the cell, in [-1, 1] across the cell (-1 and 1: its edges)"),
         "omega_star": (gen["omega_star"], "1", "normalised interference omega/omega_c"),
     }
     datasets = {
@@ -666,7 +670,9 @@ def write(gen, path, errors=None):
     }
     for k, b in enumerate(gen["blocks"]):
         axes[f"c_eps_y_{k}"] = (b["c_eps_y"], "1", f"C(nu) eps_y (JGM eqs 5, 11): grid axis of block {k} of cells")
-        axes[f"cell_{k}"] = (gen["edges"][b["cell0"]:b["cell1"], 0], "1", f"V1* at the start of each cell of block {k}")
+        axes[f"cell_{k}"] = (gen["edges"][b["cell0"]:b["cstop"], 0], "1",
+                             f"V1* at the start of each cell of block {k} (and of the next block's first cell, "
+                             "for the blend across the boundary)")
         for q, name in enumerate(QUANTITIES):
             units, long_name = QUANTITY_META[name]
             datasets[f"{name}_{k}"] = (b["values"][q], (f"c_eps_y_{k}", "nu", f"cell_{k}", "node"), units,
@@ -691,14 +697,26 @@ def write(gen, path, errors=None):
     _hdf5.write_table(path, axes, datasets, attrs)
 
 
-def build(path=None, grid=None, progress=None, measure=True):
+def build(path=None, grid=None, progress=None, measure=True, tol=None):
     """Generate a table, measure its error against the direct solver, write it; return the Table.
 
-    ``path`` None writes to the user cache (:func:`cache_dir`) under :func:`grid_key`.
+    ``path`` None writes to the user cache (:func:`cache_dir`) under :func:`grid_key`. ``tol``
+    (e.g. 1e-9): refine the grid's node counts until the measured error meets it, or raise
+    ValueError naming the error reached (:func:`fastrest.table_error.build_to_tolerance`).
+    Without ``tol`` a table whose measured error exceeds 1e-9 is written with an
+    :class:`~fastrest.table_error.AccuracyWarning`.
     """
-    gen = generate(grid, progress=progress)
-    table = Table(gen)
-    errors = table.measure_error() if measure else None
+    from . import table_error
+
+    if tol is not None:
+        tol = _check_tol(tol)
+        gen, table, errors, _ = table_error.build_to_tolerance(grid, tol, progress=progress)
+    else:
+        gen = generate(grid, progress=progress)
+        table = Table(gen)
+        errors = table.measure_error() if measure else None
+        if errors is not None:
+            table_error.warn_if_inaccurate(errors, None, "fastrest.tables.build")
     if path is None:
         path = cache_dir() / f"{grid_key(gen['grid'])}.h5"
     path = Path(path)
@@ -749,6 +767,9 @@ def _check_axes_match_grid(gen):
     blocks = eps_y_blocks(g, layout["edges"])
     if [(b["cell0"], b["cell1"], b["n"]) for b in blocks] != [(b["cell0"], b["cell1"], b["n"]) for b in gen["blocks"]]:
         raise ValueError("blocks of cells do not match the grid attributes")
+    for b, got in zip(blocks, gen["blocks"]):
+        if got["values"].shape[1:] != (b["n"], nus.size, b["cstop"] - b["cell0"], DEGREE + 1):
+            raise ValueError("a block's values do not have the shape of the grid attributes")
     checks = [("nu", nus, gen["nu"]), ("eps_y", eps_w, gen["eps_y"]), ("cell", layout["edges"], gen["edges"])]
     checks += [(f"c_eps_y_{k}", b["c_eps_y"], got["c_eps_y"]) for k, (b, got) in enumerate(zip(blocks, gen["blocks"]))]
     for name, want, got in checks:
@@ -761,7 +782,14 @@ def _check_axes_match_grid(gen):
 _LOADED = {}
 
 
-def load_table(path=None):
+def _check_tol(tol):
+    tol = real_scalar(tol, "tol")
+    if not (1e-14 <= tol < 1.0):
+        raise ValueError(f"tol (relative error asked of the table) must be in [1e-14, 1); got {tol!r}")
+    return tol
+
+
+def load_table(path=None, tol=None):
     """Load a restitution table once per process and return it.
 
     The file is read into NumPy arrays and closed; later calls with the same path return the same
@@ -772,6 +800,10 @@ def load_table(path=None):
     path : str or path-like, optional
         An HDF5 table written by ``fastrest build``. Default: the shipped table
         (0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45, up to w_m* = 425).
+    tol : float, optional
+        The accuracy the caller needs (relative; see :mod:`fastrest.table_error`): an
+        :class:`~fastrest.table_error.AccuracyWarning` if the file's measured error exceeds it.
+        Without it, a table is checked against 1e-9 when first read.
 
     Returns
     -------
@@ -783,21 +815,33 @@ def load_table(path=None):
         The file is missing, truncated, corrupted (checksum), not a fastrest table, or of an older
         or newer format version; the message names the file and what is wrong.
     """
+    from .table_error import warn_if_inaccurate
+
     key = str(Path(path).resolve()) if path is not None else None
     if key not in _LOADED:
         _LOADED[key] = read(default_table_path() if path is None else path)
+        if tol is None:
+            warn_if_inaccurate(_LOADED[key].attrs.get("measured_error"), None, f"table {_LOADED[key].path}")
+    if tol is not None:
+        warn_if_inaccurate(_LOADED[key].attrs.get("measured_error"), _check_tol(tol), f"table {_LOADED[key].path}")
     return _LOADED[key]
 
 
-def cached_table(grid=None, progress=None):
-    """A table for any grid: the shipped one if it matches, else the user cache, built on first use."""
+def cached_table(grid=None, progress=None, tol=None):
+    """A table for any grid: the shipped one if it matches, else the user cache, built on first use.
+
+    ``tol``: build it to that accuracy (refining the grid's node counts; see :func:`build`), and
+    warn if a table found in the cache does not meet it."""
     g = normalise_grid(grid)
+    if tol is not None:
+        tol = _check_tol(tol)
     if g == normalise_grid(None):
-        return load_table()
-    path = cache_dir() / f"{grid_key(g)}.h5"
+        return load_table(tol=tol)
+    key = grid_key(g) if tol is None else f"{grid_key(g)}-tol{tol:.0e}"
+    path = cache_dir() / f"{key}.h5"
     if not path.exists():
-        build(path, g, progress=progress)
-    return load_table(path)
+        build(path, g, progress=progress, tol=tol)
+    return load_table(path, tol=tol)
 
 
 # --- the default-table fast API (fastrest.omega_m_star, e_star, loss_star) -----------------------

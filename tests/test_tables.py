@@ -467,7 +467,7 @@ def test_older_format_version_rejected(small, tmp_path):
 
 
 @pytest.mark.parametrize("key, value", [("c_eps_y_map_rate", 31.0), ("eps_y_max", 0.0101),
-                                        ("nu_min", 0.21), ("fine_v1_star_max", 16.0),
+                                        ("nu_min", 0.21), ("fine_v1_star_max", 32.0),
                                         ("fine_bits_per_octave", 5)])
 def test_tampered_grid_attribute_rejected(small, tmp_path, key, value):
     """The grid attribute drives the interpolation but is not covered by the array checksum: a

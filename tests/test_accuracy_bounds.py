@@ -1,0 +1,140 @@
+"""Issue 12: every fast number within its stated error, or refused.
+
+Each case the audit found is reproduced here, against the direct solver (within ~1e-15 of the
+40-digit reference, test_direct.py). The dense sweep is bench/adversarial.py (bench/ADVERSARIAL.md).
+"""
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import fastrest
+from fastrest import direct, tables
+from fastrest import jit as frj
+from fastrest.interpolation import cell_edges
+from fastrest.table_error import AccuracyWarning
+
+V_SWITCH = 1.9**1.25
+
+
+def rel(a, b):
+    return np.abs(np.asarray(a) - b) / np.abs(b)
+
+
+# 1. the table's edge near each material's w_m* = 425 speed ------------------------------------------
+
+def test_table_edge_near_the_limit_speed_within_1e9():
+    v, eps, nu = 820.2318262158146, 0.01, 0.4448
+    for m in ("jcg", "etsion", "brake"):
+        assert rel(fastrest.e_star(v, eps, nu, m), direct.e_star(v, eps, nu, m)) <= 1e-9, m
+    # the block of cells just below V1* = 512 and the top cells, along the eps_y = 0.01 edge
+    nus = np.linspace(0.40, 0.45, 41)
+    for nu_ in nus:
+        lim = direct.v1_star_limit(0.01, nu_)
+        vs = np.concatenate([np.linspace(400.0, 512.0, 15), np.linspace(512.0, lim * (1 - 1e-9), 15)])
+        for m in ("jcg", "etsion"):
+            assert rel(fastrest.e_star(vs, 0.01, nu_, m), direct.e_star(vs, 0.01, nu_, m)).max() <= 1e-9, (m, nu_)
+        assert rel(fastrest.omega_m_star(vs, 0.01, nu_), direct.omega_m_star(vs, 0.01, nu_)).max() <= 1e-9
+
+
+def test_table_records_its_adversarial_error():
+    me = fastrest.load_table().attrs["measured_error"]
+    for name, d in me.items():
+        assert d["max_error"] <= 0.75e-9, (name, d)   # built to 1e-9 with a 0.75 safety factor
+        assert "metric" in d
+
+
+# 2. sign-changing 1 - e^2 ------------------------------------------------------------------------
+
+def test_sign_changing_loss_near_its_zero_absolute():
+    """Etsion and Brake 1 - e^2 cross zero just above 1.9^1.25 for nu below ~0.32: the table is
+    within 1e-10 absolute there, the curve within 1e-13 absolute."""
+    rng = np.random.default_rng(12)
+    v = V_SWITCH * (1 + np.concatenate([[1e-12, 1e-9, 1e-6], rng.uniform(0, 0.4, 200)]))
+    for nu in (0.2, 0.2016, 0.25, 0.3):
+        for eps in (0.0005, 0.0035, 0.01):
+            for m in ("etsion", "brake"):
+                ref = direct.loss_star(v, eps, nu, m)
+                assert np.min(ref) < 0 < np.max(ref) or nu >= 0.25
+                assert np.max(np.abs(fastrest.loss_star(v, eps, nu, m) - ref)) <= 1e-10, (m, eps, nu)
+    v, eps, nu = 2.800807599745608, 0.003509547229404654, 0.201633767553194
+    c = fastrest.curve(eps, nu, "etsion")
+    assert abs(c.loss(v) - direct.loss_star(v, eps, nu, "etsion")) <= 1e-13
+
+
+# 3. continuity at cell boundaries ------------------------------------------------------------------
+
+def _jumps(f, edges):
+    lo, hi = f(np.nextafter(edges, 0)), f(np.nextafter(edges, np.inf))
+    return (hi - lo) / np.spacing(np.abs(0.5 * (lo + hi)))
+
+
+@pytest.mark.parametrize("unloading", ["jcg", "etsion", "brake"])
+@pytest.mark.parametrize("eps,nu", [(0.0005, 0.2), (0.005, 0.33), (0.01, 0.45)])
+def test_curves_continuous_and_monotone_across_cell_boundaries(eps, nu, unloading):
+    c = fastrest.curve(eps, nu, unloading)
+    _, edges = cell_edges(V_SWITCH, c.v_max, 5)
+    inner = edges[1:, 0]
+    jw, je = _jumps(c.omega_m, inner), _jumps(c.e, inner)
+    assert np.abs(jw).max() <= 4 and np.abs(je).max() <= 4
+    # w_m* non-decreasing, e non-increasing (up to rounding: 4 ulp)
+    assert jw.min() >= -4 and je.max() <= 4
+
+
+@pytest.mark.parametrize("eps,nu", [(0.0005, 0.2), (0.005, 0.33), (0.01, 0.45), (0.0021, 0.41)])
+def test_table_continuous_across_cell_and_block_boundaries(eps, nu):
+    t = fastrest.load_table()
+    lim = direct.v1_star_limit(eps, nu)
+    inner = t.gen["edges"][1:, 0]
+    inner = inner[inner < lim * 0.999]
+    jw = _jumps(lambda x: t.omega_m_star(x, eps, nu), inner)
+    je = _jumps(lambda x: t.e_star(x, eps, nu), inner)
+    assert np.abs(jw).max() <= 16 and np.abs(je).max() <= 16   # few ulp of the 6 x 8 stencil sums
+    assert jw.min() >= -16 and je.max() <= 16
+    blocks = [b["cell0"] for b in t.gen["blocks"][1:]]
+    assert len(blocks) == 3  # the blend across V1* = 128, 256, 512 is exercised
+
+
+# 4. v_max next to the switch ----------------------------------------------------------------------
+
+def test_curve_v_max_just_above_the_switch():
+    offsets = [np.nextafter(V_SWITCH, 3) + k * np.spacing(V_SWITCH) for k in range(0, 38)]
+    offsets += [V_SWITCH, V_SWITCH * (1 + 1e-15), V_SWITCH * (1 + 3e-15)]
+    for vm in offsets:
+        vm = float(vm)
+        c = fastrest.curve(0.005, 0.33, v_max=vm)
+        ref = direct.e_star(vm, 0.005, 0.33)
+        assert c.e(vm) == pytest.approx(ref, rel=1e-13), vm
+        assert frj.e_curve(c.data, vm) == pytest.approx(ref, rel=1e-13)
+        s = fastrest.scene([(0.005, 0.33), (0.002, 0.3)], v_max=vm)
+        assert s.e(vm, 0) == pytest.approx(ref, rel=1e-13)
+
+
+# 7. custom tables are not silently inaccurate -------------------------------------------------------
+
+SMALL = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=8, nu_min=0.3, nu_max=0.35, n_nu=6,
+             bits_per_octave=2, eps_y_blocks=[[16.0, 6]], n_eps_y_energy=6)
+
+
+def test_inaccurate_table_warns_on_build_and_load(tmp_path):
+    path = tmp_path / "coarse.h5"
+    with pytest.warns(AccuracyWarning, match="measured"):
+        tables.build(path, dict(SMALL, c_eps_y_map_rate=1000.0), progress=False)
+    with pytest.warns(AccuracyWarning, match="tol"):
+        fastrest.load_table(path)
+    with pytest.warns(AccuracyWarning):
+        fastrest.load_table(path, tol=1e-6)
+
+
+def test_build_to_tolerance_meets_it_or_says_what_it_reached(tmp_path):
+    t = tables.build(tmp_path / "t.h5", SMALL, progress=False, tol=1e-7)
+    me = t.attrs["measured_error"]
+    assert max(d["max_error"] for d in me.values()) <= 1e-7
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)
+        fastrest.load_table(t.path, tol=1e-7)
+    with pytest.raises(ValueError, match=r"could not build a table within tol = 1e-14.*error"):
+        tables.build(tmp_path / "u.h5", SMALL, progress=False, tol=1e-14)
+    with pytest.raises(ValueError, match="tol"):
+        tables.build(tmp_path / "v.h5", SMALL, progress=False, tol=0.0)
