@@ -24,7 +24,7 @@ import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
-from .energy import V_SWITCH, omega_m_sorted_kernel
+from .energy import V_SWITCH, f_star_kernel, omega_m_sorted_kernel
 from .contact import W_SWITCH
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_polynomial, chebyshev_nodes, fit_cells, float_bits,
                             share_edges)
@@ -195,13 +195,24 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     ``jg_values(v)``, if given, replaces the direct solver above 1.9^1.25: it returns the (3, n)
     array of w_m*, e and 1 - e^2 at the speeds v (used by bench/ to build a curve from a table).
     """
-    model = _unloading.get(unloading).code
+    unit = _unloading.get(unloading)
+    model = unit.code
     w_hi = w_upper_model(eps_y, nu, extrapolate, model)
     limit = v1_star_limit(eps_y, nu, extrapolate, unloading)
+    if v_max is not None and v_max > limit:
+        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading)
+    if unit.cells_end < w_hi:  # extrapolating towards an unloading model's end: stop short of it
+        w_hi = unit.cells_end
+        short = float(np.sqrt(f_star_kernel(w_hi, eps_y, nu)))
+        if v_max is not None and v_max > short:
+            raise ValueError(
+                f"v_max = {v_max!r} is past V1* = {short:.10g} (w_m* = {w_hi:.6g}), the end of what a curve "
+                f"tabulates for {unit.short} unloading: towards the end of {unit.equation} (w_m* = "
+                f"{unit.omega_end:.6g}, V1* = {limit:.10g}) e falls to 0 like a square root, which the "
+                "curve's polynomial cells cannot follow at its accuracy; use fastrest.direct there")
+        limit = short
     if v_max is None:
         v_max = limit
-    elif v_max > limit:
-        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading)
     shift = MANTISSA_BITS - bits_per_octave
     hertz = hertz_rows(model)
     if v_max <= V_SWITCH:  # closed forms only

@@ -52,7 +52,7 @@ import numpy as np
 from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, warn_if_outside_validated
 from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, p_star_jg
 from .energy import F_SWITCH, jg_integral
-from .limits import raise_interference_out_of_range, w_upper
+from .limits import raise_interference_out_of_range, w_upper, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial, share_edges)
 from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
@@ -255,9 +255,9 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
     w_max = float(w_max)
     if not (math.isfinite(w_max) and w_max >= 0.0):
         raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
-    lim = forward_limit(eps_y, nu, extrapolate)
+    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model))  # the unloading model may end first
     if w_max > lim:
-        raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max")
+        raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max", unloading)
     C, B = float(c_of_nu(nu)), float(area_exponent(eps_y))
     shift = MANTISSA_BITS - bits_per_octave
     if w_max <= W_SWITCH:  # closed forms only: one dummy cell

@@ -370,62 +370,71 @@ def table_value(tab, q, v, eps_y, nu):
 
 @nb.njit(cache=True, inline="always")
 def _interpolate(tab, q, v, eps_y, nu, check_limit):
-    if not (eps_y >= tab.eps_lo and eps_y <= tab.eps_hi and nu >= tab.nu_lo and nu <= tab.nu_hi):
+    # every field is read here, unconditionally: a namedtuple field read inside a rarely taken
+    # branch (the blend of a block's first cell) made the whole loop ~7x slower (Numba; measured)
+    eps_lo, eps_hi, nu_lo, nu_hi, v_top, v_safe = tab.eps_lo, tab.eps_hi, tab.nu_lo, tab.nu_hi, tab.v_top, tab.v_safe
+    hertz, cells, cell_block, block_cell0 = tab.hertz, tab.cells, tab.cell_block, tab.block_cell0
+    g = (tab.coef, tab.block_offset, block_cell0, tab.block_inv_h, tab.block_n, tab.block_qstride,
+         tab.xi0, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    s_rate = tab.s_rate
+    split = (tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
+    if not (eps_y >= eps_lo and eps_y <= eps_hi and nu >= nu_lo and nu <= nu_hi):
         return np.nan
     if not v > V_SWITCH:
         if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
-            r = cell_polynomial(tab.hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
+            r = cell_polynomial(hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
             return r * (v - 1.0) if q > 0 and q % 2 == 0 else r  # the losses
         if v >= 0.0:  # elastic, exact
             if q == 0:
                 return v**0.8
             return 1.0 if q % 2 == 1 else 0.0
         return np.nan
-    if not v <= tab.v_top:
+    if not v <= v_top:
         return np.nan
-    cell = two_level_index(v, tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
-    u = (v - tab.cells[cell, 0]) * tab.cells[cell, 1]
+    cell = two_level_index(v, split[0], split[1], split[2], split[3], split[4])
+    u = (v - cells[cell, 0]) * cells[cell, 1]
     s = c_of_nu(nu) * eps_y
-    xi = math.expm1(tab.s_rate * s) / tab.s_rate if tab.s_rate > 0.0 else s
-    b = tab.cell_block[cell]
+    xi = math.expm1(s_rate * s) / s_rate if s_rate > 0.0 else s
+    b = cell_block[cell]
+    blend = cell == block_cell0[b] and b > 0
     w_lim = OMEGA_LIMIT
-    if check_limit and v > tab.v_safe:
-        if eps_y > EPS_Y_AR_BINDS:  # the law may end (a/R = 1) before w* = 425
-            w_lim = min(w_lim, omega_star_limit_kernel(eps_y, nu) * (1.0 + OMEGA_LIMIT_TOL))
-        if q != 0 and not _cell_value(tab, 0, b, cell, u, xi, nu) <= w_lim:
+    check = check_limit and v > v_safe
+    if check and eps_y > EPS_Y_AR_BINDS:  # the law may end (a/R = 1) before w* = 425
+        w_lim = min(w_lim, omega_star_limit_kernel(eps_y, nu) * (1.0 + OMEGA_LIMIT_TOL))
+    # one call site of the (inlined) stencil sum: passes over (w_m* for the limit check, then q)
+    # and over (this block, the previous one for a blended cell); inlined copies cost compile time
+    r = np.nan
+    for p in range(2 if check and q != 0 else 1):
+        qq = 0 if p == 0 and check and q != 0 else q
+        val = 0.0
+        for k in range(2 if blend else 1):
+            x = _block_value(g, qq, b - k, cell, u, xi, nu)
+            if k == 0:
+                val = x
+            else:  # smoothstep from the previous block's grid (left edge) to this block's (right)
+                t = min(max(0.5 * (u + 1.0), 0.0), 1.0)
+                val = x + t * t * (3.0 - 2.0 * t) * (val - x)
+        if check and qq == 0 and not val <= w_lim:
             return np.nan
-    r = _cell_value(tab, q, b, cell, u, xi, nu)
-    if check_limit and q == 0 and not r <= w_lim:
-        return np.nan
+        r = val
     return r
 
 
 @nb.njit(cache=True, inline="always")
-def _block_value(tab, q, b, cell, u, xi, nu):
-    """Quantity q in ``cell`` interpolated across materials on block b's grid."""
-    n = tab.block_n[b]
-    i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, tab.xi0, tab.block_inv_h[b], n)
-    j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, tab.nu0, tab.inv_h_nu, tab.n_nu)
-    row = 6 * tab.n_nu  # one eps_y node's coefficients
-    first = tab.block_offset[b] + ((cell - tab.block_cell0[b]) * n + i) * row + 6 * j
-    return _stencil_sum(tab.coef, first + q * tab.block_qstride[b], row, u,
-                        (e0, e1, e2, e3, e4, e5), (n0, n1, n2, n3, n4, n5))
-
-
-@nb.njit(cache=True, inline="always")
-def _cell_value(tab, q, b, cell, u, xi, nu):
-    """Quantity q at local coordinate u of ``cell`` (block b). The first cell of a block b > 0
-    blends, with a smoothstep in u, from the previous block's material grid at its left edge (where
-    the previous cell ends on that grid) to its own grid at its right edge: the table is continuous
-    to a few ulp across the block boundary although the two grids interpolate materials
-    differently (they differ by up to the table's error, ~1e-10)."""
-    r = _block_value(tab, q, b, cell, u, xi, nu)
-    if cell == tab.block_cell0[b] and b > 0:
-        r0 = _block_value(tab, q, b - 1, cell, u, xi, nu)
-        t = 0.5 * (u + 1.0)
-        t = min(max(t, 0.0), 1.0)
-        r = r0 + t * t * (3.0 - 2.0 * t) * (r - r0)
-    return r
+def _block_value(g, q, b, cell, u, xi, nu):
+    """Quantity q in ``cell`` interpolated across materials on block b's grid; ``g`` is the
+    table's (coef, block_offset, block_cell0, block_inv_h, block_n, block_qstride, xi0, nu0,
+    inv_h_nu, n_nu). The first cell of a block b > 0 is blended by :func:`_interpolate` from the
+    previous block's grid at its left edge (where the previous cell ends on that grid) to its own
+    at its right edge, so the table is continuous across block boundaries to a few ulp although
+    the two grids interpolate materials differently (by up to the table's error, ~1e-10)."""
+    coef, offset, cell0, inv_h, block_n, qstride, xi0, nu0, inv_h_nu, n_nu = g
+    n = block_n[b]
+    i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, xi0, inv_h[b], n)
+    j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, nu0, inv_h_nu, n_nu)
+    row = 6 * n_nu  # one eps_y node's coefficients
+    first = offset[b] + ((cell - cell0[b]) * n + i) * row + 6 * j
+    return _stencil_sum(coef, first + q * qstride[b], row, u, (e0, e1, e2, e3, e4, e5), (n0, n1, n2, n3, n4, n5))
 
 
 @nb.njit(cache=True)

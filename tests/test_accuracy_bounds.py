@@ -111,6 +111,28 @@ def test_curve_v_max_just_above_the_switch():
         assert s.e(vm, 0) == pytest.approx(ref, rel=1e-13)
 
 
+# 5. extrapolated JCG curves near the end of eq (35) ----------------------------------------------
+
+def test_extrapolated_jcg_curve_stops_short_of_the_end_within_its_accuracy():
+    from fastrest.unloading import get
+
+    for eps, nu in ((0.0005, 0.2), (0.0005, 0.45), (0.0008, 0.3)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", fastrest.ExtrapolationWarning)
+            c = fastrest.curve(eps, nu, "jcg", extrapolate=True)
+            v = np.concatenate([np.linspace(1000.0, c.v_max, 400), [c.v_max, np.nextafter(c.v_max, 0)]])
+            ref = direct.e_star(v, eps, nu, "jcg", extrapolate=True)
+            assert rel(c.e(v), ref).max() <= 2e-13
+            assert c.omega_m(c.v_max) == pytest.approx(get("jcg").cells_end, rel=1e-9)
+            end = direct.v1_star_limit(eps, nu, True, "jcg")
+            with pytest.raises(ValueError, match="square root.*fastrest.direct"):
+                fastrest.curve(eps, nu, "jcg", v_max=0.5 * (c.v_max + end), extrapolate=True)
+            # the direct solver goes on to the end; e stays positive and decreasing
+            near = end * (1 - np.array([1e-3, 1e-6]))
+            e = direct.e_star(near, eps, nu, "jcg", extrapolate=True)
+            assert np.all(e > 0) and e[1] < e[0]
+
+
 # 7. custom tables are not silently inaccurate -------------------------------------------------------
 
 SMALL = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=8, nu_min=0.3, nu_max=0.35, n_nu=6,

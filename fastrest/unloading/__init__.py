@@ -3,7 +3,8 @@
 A model is a module of this package with
 
 * ``NAME``, ``SHORT``, ``LABEL``, ``EQUATION``, ``REFERENCE``: its public name and citation;
-* ``OMEGA_END``: the w_m* where the model itself ends (``inf`` if it does not);
+* ``OMEGA_END``: the w_m* where the model itself ends (``inf`` if it does not), and ``CELLS_END``:
+  how far curves may tabulate it (short of an end where e behaves like a square root);
 * ``residual(wm, wm1, p, eps_y, nu) -> (w_res*, delta)``: the residual interference after loading
   to w_m* = wm (wm1 = w_m* - 1 computed without cancellation, p = P_m*), delta = w_m* - w_res*;
 * ``restitution(f, wm, wm1, p, eps_y, nu) -> (e^2, 1 - e^2, w_res*, delta, R_res/R)`` for an
@@ -50,6 +51,8 @@ class UnloadingModel:
         What it is, its equation (short, for messages) and where it comes from.
     omega_end : float
         w_m* at which the model ends (``inf`` if never): past it e is undefined.
+    cells_end : float
+        Largest w_m* a curve tabulates (the cells cannot follow e near an end).
     """
 
     name: str
@@ -59,9 +62,10 @@ class UnloadingModel:
     equation: str
     reference: str
     omega_end: float
+    cells_end: float
 
 
-MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END))
+MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END), float(u.CELLS_END))
           for k, u in enumerate(_UNITS)}
 #: Public names in code order.
 NAMES = tuple(MODELS)

@@ -29,6 +29,7 @@ REFERENCE = ("Brake M.R.W. (2015) An analytical elastic plastic contact model wi
              "frictional effects for normal and oblique impacts, Int. J. Solids Struct. 62:104-123; "
              "equations as implemented in tmdsimpy (tmd-lab)")
 OMEGA_END = math.inf
+CELLS_END = math.inf  # curves may tabulate up to the loading law's end
 
 
 @jit(inline=True)

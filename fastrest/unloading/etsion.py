@@ -18,6 +18,7 @@ EQUATION = "eqs 33-34"
 REFERENCE = ("Etsion I., Kligerman Y., Kadin Y. (2005) Unloading of an elastic-plastic loaded spherical "
              "contact, Int. J. Solids Struct. 42:3716-3729 (as JGM 2010 eqs 33-34)")
 OMEGA_END = math.inf
+CELLS_END = math.inf  # curves may tabulate up to the loading law's end
 
 
 @jit(inline=True)

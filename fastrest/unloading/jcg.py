@@ -21,6 +21,10 @@ REFERENCE = ("Jackson R.L., Chusoipin I., Green I. (2005) A finite element study
              "and deformation in hemispherical contacts, J. Tribol. 127:484-493 (as JGM 2010 eq 35)")
 #: w_m* at which eq (35) gives w_res = w_m.
 OMEGA_END = 1.0 + 6.9 * ((1.0 - 1.0 / 1.02) ** (-1.0 / 0.54) - 1.0)
+#: Largest w_m* a curve tabulates (extrapolating): towards OMEGA_END e falls to 0 like a square root,
+#: which piecewise polynomials in V1* cannot follow; up to 0.6 OMEGA_END they keep ~1e-13
+#: (measured, tests/test_accuracy_bounds.py). The direct solver goes on to OMEGA_END.
+CELLS_END = 0.6 * OMEGA_END
 
 
 @jit(inline=True)
