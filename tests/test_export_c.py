@@ -6,7 +6,6 @@ requires agreement to 2 ulp (the header is designed to agree bit for bit)."""
 import os
 import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -107,3 +107,15 @@ def test_bad_pairs(tmp_path, capsys):
 def test_unwritable(tmp_path, capsys):
     assert cli.main(["export", "velocity"] + STEEL + ["--V-max", "1", "--out", str(tmp_path / "no" / "x")]) == 2
     assert "--out" in capsys.readouterr().err
+
+
+def test_damaged_pairs_file_in_subprocess(tmp_path):
+    """A hostile --pairs file (random bytes) gives an error naming --pairs, no crash or hang."""
+    import subprocess
+    import sys
+    bad = tmp_path / "pairs.csv"
+    bad.write_bytes(np.random.default_rng(5).integers(0, 256, 4096, dtype=np.uint8).tobytes())
+    r = subprocess.run([sys.executable, "-m", "fastrest", "export", "velocity", "--pairs", str(bad), "--V-max", "1",
+                        "--out", str(tmp_path / "o")], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and "--pairs" in r.stderr
+    assert sorted(os.listdir(tmp_path)) == ["pairs.csv"]
