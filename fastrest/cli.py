@@ -1,4 +1,5 @@
-"""Command line: ``fastrest e`` (the model for one impact), ``build``, ``info``, ``warmup``."""
+"""Command line: ``fastrest e`` (the model for one impact), ``build``, ``info``, ``warmup``, ``figures``,
+``export`` (:mod:`fastrest.export.cli`)."""
 import argparse
 import json
 import math
@@ -298,12 +299,17 @@ def main(argv=None):
     pf.add_argument("--dpi", type=int, default=150, help="resolution (default: 150)")
     pf.set_defaults(func=_cmd_figures)
 
+    from .export.cli import add_parser as add_export_parser
+
+    add_export_parser(sub)
+
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
     args = p.parse_args(argv)
     try:
         return args.func(args)
     except (ValueError, TypeError) as exc:
-        print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
+        cmd = args.cmd + (f" {args.what}" if getattr(args, "what", None) else "")
+        print(f"fastrest {cmd}: error: {exc}", file=sys.stderr)
         return 2
 
 

@@ -617,6 +617,18 @@ class Table:
         """Interpolated 1 - e^2 (-); see :func:`fastrest.direct.loss_star`."""
         return self._scalar(2 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
+    def to_xarray(self, tol=1e-3, n_check=20000):
+        """This table on a rectilinear (v1_star, eps_y, nu) grid as an :class:`xarray.Dataset`.
+
+        Variables ``omega_m``, ``e_<model>``, ``loss_<model>`` (NaN past w_m* = 425), nodes placed
+        so that linear interpolation (``ds.e_jcg.interp(...)``) is within ``tol`` of the direct
+        solver where it can be; the measured errors are in the attributes. Needs xarray
+        (``pip install fastrest[xarray]``); see :mod:`fastrest.export.grid`.
+        """
+        from .export.grid import to_xarray
+
+        return to_xarray(self, tol, n_check)
+
     # --- accuracy against the direct solver ---
     def measure_error(self, points=None):
         """Worst error of every quantity against the direct solver, on the adversarial sample of

@@ -1,0 +1,265 @@
+"""A rectilinear grid for the xarray / NetCDF world: ``fastrest export grid``, ``Table.to_xarray()``.
+
+Variables ``omega_m`` (w_m*), ``e_<model>`` and ``loss_<model>`` (1 - e^2) of every unloading model
+a table holds, on coordinates ``v1_star`` (V1* = V1/V_c), ``eps_y`` and ``nu``, with NaN wherever
+the model is undefined (w_m* > 425 for that material, or past a/R = 1). Node values come from the
+table (:mod:`fastrest.tables`, ~1e-9 of the direct solver); V1* <= 1 (elastic: e = 1,
+1 - e^2 = 0, w_m* = V1*^0.8) is not gridded, the grid starts at V1* = 1.
+
+Node placement: each axis is refined by bisection, independently, until linear interpolation along
+it is within tol/3 at 7 points inside every interval, for probe lines across the other two axes;
+the V1* axis is checked both linear in ln V1* and linear in V1* (what ``xarray``'s ``.interp`` does)
+and has nodes on both sides of the model's jump at V1* = 1.9^1.25 (:data:`._placement.JUMP`:
+the Jackson-Green loading law does not meet Hertz's at w* = 1.9, so e jumps there). The result is then measured at random points against
+the direct solver (:mod:`fastrest.direct`): trilinear and tricubic (4-point Lagrange per axis)
+interpolation in (ln V1*, eps_y, nu). Error: |interpolated - exact| / max(|exact|, 1), i.e.
+absolute for e and 1 - e^2, relative for w_m* > 1.
+"""
+import json
+
+import numpy as np
+
+from .._validation import real_scalar
+from ..direct import impact_array
+from ..limits import v1_star_limit
+from ..tables import QUANTITIES, _table_array, load_table
+from .. import unloading as _unloading
+from ._io import atomic_path, provenance
+from ._placement import JUMP, place_rows, scaled_error as _err
+
+__all__ = ["DEFAULT_TOL", "TOL_MIN", "MAX_NODES", "grid_arrays", "measure", "to_xarray", "write_grid"]
+
+DEFAULT_TOL = 1e-3
+#: The table's own error is ~1e-9; below 1e-6 its nodes would not be accurate enough to measure against.
+TOL_MIN = 1e-6
+MAX_NODES = 20_000_000
+
+
+def _names(table):
+    return QUANTITIES[:table.data.n_quantities]
+
+
+def _var_name(q):
+    return "omega_m" if q == "omega_m_star" else q
+
+
+def _eval(table, v, e, n):
+    """(nq, size) values of every quantity at broadcast points (NaN outside the model's domain)."""
+    v, e, n = (np.ascontiguousarray(a, dtype=np.float64).ravel() for a in np.broadcast_arrays(v, e, n))
+    out = np.empty((table.data.n_quantities, v.size))
+    for q in range(out.shape[0]):
+        _table_array(table.data, q, v, e, n, out[q])
+    return out
+
+
+def grid_arrays(table=None, tol=DEFAULT_TOL):
+    """Nodes and values of the grid: dict(v1_star, eps_y, nu, values={name: (nv, ne, nn) array})."""
+    table = load_table() if table is None else table
+    tol = real_scalar(tol, "--tol")
+    if not (TOL_MIN <= tol < 1.0):
+        raise ValueError(f"--tol must be in [{TOL_MIN:g}, 1) (the grid's nodes come from a table accurate "
+                         f"to ~1e-9); got {tol!r}")
+    d = table.data
+    e_lo, e_hi, n_lo, n_hi, v_top = d.eps_lo, d.eps_hi, d.nu_lo, d.nu_hi, d.v_top
+    share = tol / 3.0
+    pe, pn = np.linspace(e_lo, e_hi, 7), np.linspace(n_lo, n_hi, 4)
+    PE, PN = [a.ravel() for a in np.meshgrid(pe, pn, indexing="ij")]
+
+    def along_v(v):
+        return _eval(table, v[None, :], PE[:, None], PN[:, None]).reshape(-1, v.size)
+
+    seed = np.concatenate([np.geomspace(1.0, v_top, 41), JUMP])
+    v = place_rows(along_v, seed, share, 20000, log=True, what="nodes in v1_star")
+    pv = np.unique(np.concatenate([np.geomspace(1.2, v_top, 60), v[-40:]]))
+    PV, PN2 = [a.ravel() for a in np.meshgrid(pv, pn, indexing="ij")]
+
+    def along_e(e):
+        return _eval(table, PV[:, None], e[None, :], PN2[:, None]).reshape(-1, e.size)
+
+    eps = place_rows(along_e, np.linspace(e_lo, e_hi, 5), share, 20000, what="nodes in eps_y")
+    PV3, PE3 = [a.ravel() for a in np.meshgrid(pv, pe, indexing="ij")]
+
+    def along_n(n):
+        return _eval(table, PV3[:, None], PE3[:, None], n[None, :]).reshape(-1, n.size)
+
+    nu = place_rows(along_n, np.linspace(n_lo, n_hi, 3), share, 20000, what="nodes in nu")
+    if v.size * eps.size * nu.size > MAX_NODES:
+        raise ValueError(f"--tol = {tol!r} cannot be met within {MAX_NODES} grid nodes "
+                         f"({v.size} x {eps.size} x {nu.size}); give a larger --tol")
+    vals = _eval(table, v[:, None, None], eps[None, :, None], nu[None, None, :])
+    vals = vals.reshape(-1, v.size, eps.size, nu.size)
+    return dict(v1_star=v, eps_y=eps, nu=nu, tol=tol,
+                values={_var_name(q): vals[i] for i, q in enumerate(_names(table))})
+
+
+# --- measuring --------------------------------------------------------------------------------
+
+def _stencil(x, xq, m, brk=None):
+    """Indices and weights of the m-point Lagrange stencil of nodes x at points xq (m = 2: linear).
+
+    ``brk``: a node index j where the function jumps between x[j] and x[j + 1]: stencils of
+    points up to x[j] end at j, those of later points start at j + 1.
+    """
+    i = np.clip(np.searchsorted(x, xq, side="right") - 1, 0, x.size - 2)
+    first = i - (m // 2 - 1)
+    if brk is not None:
+        first = np.where(xq <= x[brk], np.minimum(first, brk - m + 1), np.maximum(first, brk + 1))
+    first = np.clip(first, 0, x.size - m)
+    idx = first[:, None] + np.arange(m)[None, :]
+    xs = x[idx]
+    w = np.ones((xq.size, m))
+    for a in range(m):
+        for b in range(m):
+            if a != b:
+                w[:, a] *= (xq - xs[:, b]) / (xs[:, a] - xs[:, b])
+    return idx, w
+
+
+def interpolate(grid, name, v, e, n, m=2):
+    """Tensor-product m-point Lagrange interpolation of ``grid['values'][name]`` in (ln V1*, eps_y, nu)
+    (m = 2 trilinear, m = 4 tricubic; its stencils in V1* stay on one side of the jump at
+    1.9^1.25); NaN where a stencil node is NaN."""
+    lv = np.log(grid["v1_star"])
+    j = np.flatnonzero(grid["v1_star"] == JUMP[0])
+    iv, wv = _stencil(lv, np.log(v), m, int(j[0]) if j.size and m > 2 else None)
+    ie, we = _stencil(grid["eps_y"], e, m)
+    jn, wn = _stencil(grid["nu"], n, m)
+    f = grid["values"][name]
+    out = np.zeros(v.size)
+    for a in range(m):
+        for b in range(m):
+            for c in range(m):
+                out += wv[:, a] * we[:, b] * wn[:, c] * f[iv[:, a], ie[:, b], jn[:, c]]
+    return out
+
+
+def sample(grid, n_points, seed=2014):
+    """Random points in the model's domain over the grid: uniform in (eps_y, nu), log-uniform in
+    V1* from 1 to the material's w_m* = 425 speed."""
+    rng = np.random.default_rng(seed)
+    e = rng.uniform(grid["eps_y"][0], grid["eps_y"][-1], n_points)
+    n = rng.uniform(grid["nu"][0], grid["nu"][-1], n_points)
+    lim = np.array([v1_star_limit(a, b) for a, b in zip(e, n)])
+    v = np.exp(rng.uniform(0.0, 1.0, n_points) * np.log(lim))
+    return v, e, n
+
+
+def measure(grid, n_points=20000, seed=2014):
+    """Worst error of trilinear and tricubic interpolation against the direct solver."""
+    v, e, n = sample(grid, n_points, seed)
+    names = list(grid["values"])
+    nm = (len(names) - 1) // 2
+    ref = {}
+    sol = np.empty((5, v.size))
+    for m in range(nm):
+        impact_array(v, e, n, m, False, sol)
+        ref["omega_m"] = sol[0].copy()
+        ref[f"e_{_unloading.NAMES[m]}"] = sol[1].copy()
+        ref[f"loss_{_unloading.NAMES[m]}"] = sol[2].copy()
+    out = {"n_check": int(v.size)}
+    nan = np.zeros(v.size, bool)
+    for method, m in (("linear", 2), ("cubic", 4)):
+        out[method] = {}
+        for q in names:
+            got = interpolate(grid, q, v, e, n, m)
+            if m == 2:
+                nan |= np.isnan(got)
+            err = _err(got, ref[q])
+            out[method][q] = float(np.nanmax(err))
+    out["nan_fraction"] = float(nan.mean())
+    return out
+
+
+# --- files ------------------------------------------------------------------------------------
+
+COORDS = {
+    "v1_star": ("1", "normalised impact speed V1* = V1/V_c (JGM eq 28); V1* <= 1 is elastic (e = 1)"),
+    "eps_y": ("1", "yield strain eps_y = Sy/E' (JGM eq 11)"),
+    "nu": ("1", "Poisson's ratio of the yielding material"),
+}
+
+
+def _var_meta(name):
+    if name == "omega_m":
+        return "1", "normalised maximum interference w_m* = omega_m/omega_c (JGM eq 29)"
+    q, model = name.split("_", 1)
+    label = _unloading.get(model).label
+    if q == "e":
+        return "1", f"coefficient of restitution e, {label} (JGM eq 38)"
+    return "1", f"dissipated fraction 1 - e^2, {label}"
+
+
+def global_attrs(table, grid, report):
+    prov = provenance()
+    src = {"path": table.path, "format_version": table.attrs.get("format_version"),
+           "checksum": table.attrs.get("checksum"), "fastrest_version": table.attrs.get("fastrest_version")}
+    attrs = {
+        "Conventions": "CF-1.8",
+        "title": "fastrest: Jackson-Green-Marghitu (2010) coefficient of restitution on a rectilinear grid",
+        "references": prov["references"],
+        "source": "fastrest table (fastrest.tables) interpolated at the grid's nodes; table: " + json.dumps(src),
+        "history": f"fastrest {prov['fastrest_version']}: fastrest export grid (tol {grid['tol']:g})",
+        "comment": ("NaN where the model is undefined (w_m* > 425 for that material, JGM section 3.3). "
+                    "Interpolate linearly in (ln v1_star, eps_y, nu) or in (v1_star, eps_y, nu); "
+                    "the error is |interpolated - exact| / max(|exact|, 1)."),
+        "fastrest_version": prov["fastrest_version"],
+        "unloading_models": ",".join(_unloading.NAMES[:(len(grid["values"]) - 1) // 2]),
+        "interpolation_tolerance": grid["tol"],
+    }
+    if report:
+        attrs["measured_error"] = json.dumps({k: report[k] for k in ("n_check", "linear", "cubic", "nan_fraction")})
+        for method in ("linear", "cubic"):
+            for q, e in report[method].items():
+                attrs[f"max_error_{method}_{q}"] = e
+    return attrs
+
+
+def to_xarray(table=None, tol=DEFAULT_TOL, n_check=20000):
+    """The grid as an :class:`xarray.Dataset` (needs xarray: ``pip install fastrest[xarray]``)."""
+    try:
+        import xarray as xr
+    except ImportError:
+        raise ImportError("Table.to_xarray needs xarray: pip install fastrest[xarray]") from None
+    table = load_table() if table is None else table
+    grid = grid_arrays(table, tol)
+    report = measure(grid, n_check) if n_check else None
+    coords = {k: (k, grid[k], {"units": u, "long_name": ln}) for k, (u, ln) in COORDS.items()}
+    data = {}
+    for name, arr in grid["values"].items():
+        units, ln = _var_meta(name)
+        data[name] = (("v1_star", "eps_y", "nu"), arr, {"units": units, "long_name": ln})
+    return xr.Dataset(data, coords=coords, attrs=global_attrs(table, grid, report))
+
+
+def write_grid(path, tol=None, table_path=None, n_check=20000):
+    """Build the grid, measure it, and write a CF NetCDF4/HDF5 file (h5py, atomically).
+
+    Returns (grid, report) with report: shape, variables, tol, n_check, linear, cubic, nan_fraction.
+    """
+    import h5py
+
+    if n_check is not None and not (isinstance(n_check, int) and n_check >= 100):
+        raise ValueError(f"--check-points must be an integer >= 100; got {n_check!r}")
+    table = load_table(table_path)
+    grid = grid_arrays(table, DEFAULT_TOL if tol is None else tol)
+    report = measure(grid, n_check)
+    with atomic_path(path, "--out") as tmp:
+        with h5py.File(tmp, "w", locking=False) as f:
+            scales = {}
+            for k, (units, ln) in COORDS.items():
+                ds = f.create_dataset(k, data=grid[k].astype(np.float64))
+                ds.attrs["units"], ds.attrs["long_name"] = units, ln
+                ds.make_scale(k)
+                scales[k] = ds
+            for name, arr in grid["values"].items():
+                units, ln = _var_meta(name)
+                ds = f.create_dataset(name, data=arr, fillvalue=np.nan, chunks=True, compression="gzip",
+                                      shuffle=True)
+                ds.attrs["units"], ds.attrs["long_name"] = units, ln
+                ds.attrs["_FillValue"] = np.float64(np.nan)
+                for i, k in enumerate(("v1_star", "eps_y", "nu")):
+                    ds.dims[i].attach_scale(scales[k])
+            for k, val in global_attrs(table, grid, report).items():
+                f.attrs[k] = val
+    report.update(shape={k: int(grid[k].size) for k in COORDS}, variables=list(grid["values"]), tol=grid["tol"])
+    return grid, report
