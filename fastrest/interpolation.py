@@ -13,6 +13,8 @@ branch). A cell boundary sits exactly at V1* = 1.9^1.25 and the last cell ends a
 straddles the kink at w* = 1.9 or the end of the domain.
 """
 
+import math
+
 import numba as nb
 import numpy as np
 from llvmlite import ir
@@ -24,7 +26,9 @@ ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
 MANTISSA_BITS = 52
 
 # Chebyshev points of the first kind on [-1, 1] and the map from values there to monomial coefficients.
-CHEB_U = np.cos(np.pi * (np.arange(DEGREE + 1)[::-1] + 0.5) / (DEGREE + 1))
+# (math.cos: NumPy's vectorised cos may differ in the last bit between CPU instruction sets, and
+# the table files store these points.)
+CHEB_U = np.array([math.cos(math.pi * (k + 0.5) / (DEGREE + 1)) for k in range(DEGREE, -1, -1)])
 VALUES_TO_COEFFS = np.linalg.inv(np.vander(CHEB_U, DEGREE + 1, increasing=True))
 
 
