@@ -198,7 +198,7 @@ def read_table(path):
 
     stored = table.attrs.get("checksum")
     if not isinstance(stored, str):
-        raise TableFileError(f"{path}: no checksum attribute; the file is incomplete or "
+        raise TableFileError(f"{path}: no (string) checksum attribute; the file is incomplete or "
                              "corrupted, rebuild the table")
     algorithm = table.attrs.get("checksum_algorithm")
     if algorithm != _CHECKSUM_ALGORITHM:

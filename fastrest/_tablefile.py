@@ -174,7 +174,7 @@ def check_target(path):
     path = os.fspath(path)
     _check_existing(path)
     try:
-        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)), suffix=".tmp")
+        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)), suffix=".probe")
     except OSError as exc:
         raise _os_error(exc, path, "write the") from None
     os.close(fd)

@@ -826,6 +826,16 @@ def _check_file_arrays(td, g, cells, quantities):
             raise ValueError(f"{name!r} has dtype {values.dtype}, not float64")
         if name != "W_star" and not np.isfinite(values).all():
             raise ValueError(f"{name!r} holds NaN or infinite values")
+    # Plausibility (a file with recomputed checksums can hold any finite numbers): w_m* > 1 above
+    # the elastic range, 0 < e < 2, and each loss equal to 1 - e^2 to rounding
+    for k in range(len(blocks)):
+        if not (td.datasets[f"omega_m_star_{k}"] > 1.0).all():
+            raise ValueError(f"'omega_m_star_{k}' holds values <= 1 (the table starts above the elastic range)")
+        for q in quantities[1::2]:
+            e, loss = td.datasets[f"{q}_{k}"], td.datasets[f"loss{q[1:]}_{k}"]
+            if not ((e > 0.0) & (e < 2.0) & (np.abs(loss - (1.0 - e * e)) <= 1e-12)).all():
+                raise ValueError(f"'{q}_{k}' or 'loss{q[1:]}_{k}' is not a coefficient of restitution and its "
+                                 "1 - e^2")
     # W* = 1 - F is NaN exactly past the end of the law (a/R = 1), where the generator leaves it so
     w, e, n = td.axes["omega_star"], td.axes["eps_y"], td.axes["nu"]
     lim = np.array([[omega_star_limit_kernel(x, y) for y in n] for x in e])[:, :, None]
