@@ -2,6 +2,7 @@
 import argparse
 import json
 import math
+import os
 import sys
 import time
 import warnings
@@ -290,10 +291,23 @@ def main(argv=None):
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
     args = p.parse_args(argv)
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        return code
+    except BrokenPipeError:
+        # the reader went away (`fastrest info --json FILE | head`): stop quietly, as cat does;
+        # stdout goes to /dev/null so that the interpreter's final flush does not complain
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError):
+            pass
+        return 141  # 128 + SIGPIPE, what a shell reports for a command killed by SIGPIPE
     except (ValueError, TypeError) as exc:
         print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # unwritable --out, full disk: the message names the file
+        print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -915,6 +915,8 @@ def cached_table(grid=None, progress=None):
         except _hdf5.TableFileError as exc:
             # a damaged cache entry is rebuilt, not re-raised on every call
             warnings.warn(f"rebuilding the cached table: {exc}", RuntimeWarning, stacklevel=2)
+            if not path.is_file() and not path.is_dir():
+                path.unlink()  # a FIFO, device or link to one in the cache: a table never replaces those
     build(path, g, progress=progress)
     return load_table(path)
 

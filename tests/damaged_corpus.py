@@ -107,37 +107,46 @@ def raw_ranges(path):
 
 # --- the corpus --------------------------------------------------------------------------------
 
-def _flip(data, offset, rng):
-    data = bytearray(data)
-    data[offset] ^= int(rng.integers(1, 256))
-    return bytes(data)
+def _flipped(data, offset, value):
+    def make():
+        d = bytearray(data)
+        d[offset] ^= value
+        return bytes(d)
+    return make
 
 
-def _in_ranges(x, ranges):
-    return any(o <= x < o + s for o, s in ranges)
+def _zeroed(data, page):
+    def make():
+        d = bytearray(data)
+        d[page * PAGE:(page + 1) * PAGE] = bytes(len(d[page * PAGE:(page + 1) * PAGE]))
+        return bytes(d)
+    return make
 
 
-def byte_cases(base, n_random=40, seed=2024):
-    """(category, name, bytes) of the byte-level damages of the file ``base``."""
+def byte_cases(base, n_random=40, n_pages=8, seed=2024):
+    """(category, name, make) of the byte-level damages of the file ``base``; make() -> bytes."""
     data = Path(base).read_bytes()
     n = len(data)
     rng = np.random.default_rng(seed)
-    ranges = raw_ranges(base)
-    meta = np.array([x for x in range(USERBLOCK, n) if not _in_ranges(x, ranges)])
-    raw = np.array([x for x in range(USERBLOCK, n) if _in_ranges(x, ranges)])
+    in_raw = np.zeros(n, dtype=bool)
+    for offset, size in raw_ranges(base):
+        in_raw[offset:offset + size] = True
+    in_raw[:USERBLOCK] = True  # the header is its own category
+    meta = np.flatnonzero(~in_raw)
+    in_raw[:USERBLOCK] = False
+    raw = np.flatnonzero(in_raw)
     out = []
     cuts = sorted({0, 1, 100, 511, 512, 513, 1024, n // 4, n // 2, 3 * n // 4, n - PAGE, n - 1})
-    out += [("truncated", f"cut-{c}", data[:c]) for c in cuts if 0 <= c < n]
-    out += [("header", f"header-{x}", _flip(data, int(x), rng))
-            for x in [0, 21, 27, 40, 100, 200, 511] + list(rng.integers(0, USERBLOCK, 3))]
-    out += [("metadata", f"meta-{x}", _flip(data, int(x), rng)) for x in rng.choice(meta, n_random)]
-    out += [("data", f"data-{x}", _flip(data, int(x), rng)) for x in rng.choice(raw, max(n_random // 4, 1))]
-    pages = sorted({0, (n - 1) // PAGE} | set(int(p) for p in rng.integers(0, (n - 1) // PAGE + 1, 6)))
-    for p in pages:
-        d = bytearray(data)
-        d[p * PAGE:(p + 1) * PAGE] = bytes(len(d[p * PAGE:(p + 1) * PAGE]))
-        out.append(("page", f"page-{p}", bytes(d)))
-    out += [("appended", "appended-zeros", data + bytes(PAGE)), ("appended", "appended-copy", data + data)]
+    out += [("truncated", f"cut-{c}", (lambda c=c: data[:c])) for c in cuts if 0 <= c < n]
+    flips = [("header", x) for x in [0, 21, 27, 40, 100, 200, 511] + list(rng.integers(0, USERBLOCK, 3))]
+    flips += [("metadata", x) for x in rng.choice(meta, n_random)]
+    flips += [("data", x) for x in rng.choice(raw, max(n_random // 4, 1))]
+    out += [(c, f"{c}-{int(x)}", _flipped(data, int(x), int(rng.integers(1, 256)))) for c, x in flips]
+    last = (n - 1) // PAGE
+    pages = sorted({0, last} | set(int(p) for p in rng.choice(last + 1, min(n_pages, last + 1), replace=False)))
+    out += [("page", f"page-{p}", _zeroed(data, p)) for p in pages]
+    out += [("appended", "appended-zeros", lambda: data + bytes(PAGE)),
+            ("appended", "appended-copy", lambda: data + data)]
     return out
 
 
@@ -257,6 +266,10 @@ def hostile_cases(base, workdir):
         "many-attributes": edit(lambda f: [f.attrs.__setitem__(f"a{i}", i) for i in range(100)]),
         "missing-dataset": edit(lambda f: f.__delitem__("e_jcg_0")),
         "renamed-dataset": edit(lambda f: f.move("cell_end", "cell_stop")),
+        "missing-dataset-checksum-recomputed": edit(lambda f: f.__delitem__("e_jcg_0"), checksum=True),
+        "renamed-dataset-checksum-recomputed": edit(lambda f: f.move("cell_end", "cell_stop"), checksum=True),
+        "extra-dataset-checksum-recomputed": edit(lambda f: f.create_dataset("extra", data=np.arange(3.0)),
+                                                  checksum=True),
     }
 
     def foreign(path):
@@ -306,16 +319,31 @@ def special_cases(workdir):
     return out
 
 
-def make_corpus(base, workdir, n_random=40, seed=2024):
-    """Write the corpus into ``workdir``; returns a list of (category, name, path)."""
+class LazyFile:
+    """A corpus file written only when the runner needs it (and removed after): the byte-level
+    cases of a 6 MB table would take gigabytes at once."""
+
+    def __init__(self, path, make):
+        self.path, self.make = Path(path), make
+
+    def materialise(self):
+        self.path.write_bytes(self.make())
+        return self.path
+
+    def __str__(self):
+        return str(self.path)
+
+
+def make_corpus(base, workdir, n_random=40, n_pages=8, seed=2024, lazy=False):
+    """The corpus in ``workdir``: a list of (category, name, path); with ``lazy`` the byte-level
+    cases are :class:`LazyFile` objects instead of paths."""
     workdir = Path(workdir)
     files = workdir / "files"
     files.mkdir(parents=True, exist_ok=True)
     out = []
-    for category, name, data in byte_cases(base, n_random, seed):
-        p = files / f"{category}-{name}.h5"
-        p.write_bytes(data)
-        out.append((category, name, p))
+    for category, name, make in byte_cases(base, n_random, n_pages, seed):
+        f = LazyFile(files / f"{name}.h5", make)
+        out.append((category, name, f if lazy else f.materialise()))
     for category, name, build in hostile_cases(base, workdir):
         p = files / f"{category}-{name}.h5"
         build(p)
@@ -382,7 +410,10 @@ def run_corpus(cases, timeout=20.0, start_timeout=120.0):
                 child = _Child()
                 if child.line(start_timeout) != "READY":
                     raise RuntimeError("the loader process did not start")
-            answer = child.ask(path, timeout)
+            lazy = isinstance(path, LazyFile)
+            answer = child.ask(path.materialise() if lazy else path, timeout)
+            if lazy:
+                path.path.unlink()
             if answer is None or answer == "":
                 if answer is None:
                     outcome = f"hang (> {timeout:g} s)"
@@ -418,6 +449,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--base", help="table file to damage (default: a small table built now)")
     p.add_argument("--random", type=int, default=40, help="random metadata byte flips (data: a quarter)")
+    p.add_argument("--pages", type=int, default=8, help="random 4 KiB pages zeroed (plus the first and last)")
     p.add_argument("--timeout", type=float, default=20.0, help="seconds per file")
     args = p.parse_args(argv)
     sys.path.insert(0, str(REPO))
@@ -430,7 +462,8 @@ def main(argv=None):
                                     n_nu=6, bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6),
                          progress=False, measure=False)
         t0 = time.perf_counter()
-        results = run_corpus(make_corpus(base, Path(tmp) / "corpus", args.random), args.timeout)
+        cases = make_corpus(base, Path(tmp) / "corpus", args.random, args.pages, lazy=True)
+        results = run_corpus(cases, args.timeout)
         dt = time.perf_counter() - t0
     counts, total = summary(results)
     for category, c in counts.items():
