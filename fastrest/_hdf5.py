@@ -1,7 +1,9 @@
 """Storage of precomputed tables in HDF5 files (no physics here).
 
-Layout of a table file (format ``fastrest-table``, version 1)::
+Layout of a table file (format ``fastrest-table``, version 3)::
 
+    bytes 0-511           the HDF5 user block: a text header with the file's size and the
+                          SHA-256 digest of the bytes after it (see fastrest._tablefile)
     /                     root attributes: format, format_version, fastrest_version,
                           checksum, checksum_algorithm, plus the caller's attributes
     /<axis>               1-D float64 dimension scale named after the axis;
@@ -11,42 +13,46 @@ Layout of a table file (format ``fastrest-table``, version 1)::
 
 Every axis is an HDF5 dimension scale named exactly like its dataset, so
 ``xarray.open_dataset(path, engine="h5netcdf")`` shows named coordinates and
-``h5dump -H`` shows the structure. The checksum is a SHA-256 over the names, dtypes,
-shapes and bytes of all arrays, so a reader detects damaged data without trusting HDF5.
+``h5dump -H`` shows the structure (HDF5 skips the user block). A reader checks the header's
+size and digest with plain reads before HDF5 parses anything, then the structure (datasets only,
+stored inside the file, float64 or integer) before it allocates anything. The ``checksum``
+attribute, a SHA-256 over the names, dtypes, shapes and bytes of all arrays, also ties the
+arrays to the metadata HDF5 reports.
 
-Files are written to a temporary file beside the target and renamed over it, so a reader
-sees either the old table or the new one, never a half-written file.
+Files are built in memory and written to a temporary file beside the target, which is renamed
+over it, so a reader sees either the old table or the new one, never a half-written file, and a
+full disk gives an OSError naming the file.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import hashlib
+import io
+import itertools
 import json
+import math
 import os
 import stat
-import tempfile
 
 import h5py
 import numpy as np
 
+from ._tablefile import USERBLOCK, TableFileError, read_verified, write_atomic
 from ._version import __version__
 
 __all__ = ["FORMAT_NAME", "FORMAT_VERSION", "TableData", "TableFileError", "read_table",
            "write_table"]
 
 FORMAT_NAME = "fastrest-table"
-FORMAT_VERSION = 3  # 2: two-level V1* cells (finer just above the kink); 3: Lobatto nodes, unloading models list
+FORMAT_VERSION = 3  # 2: two-level V1* cells; 3: header with digest, Lobatto nodes, unloading models list
+#: Most objects at the root, and attributes per object, a table file may have.
+_MAX_OBJECTS = 1024
+_MAX_ATTRS = 64
+_IMAGE_IDS = itertools.count()
 _CHECKSUM_ALGORITHM = "sha256"
 # Root attribute listing the attributes that hold JSON-encoded dicts, so that a
 # caller's plain string that happens to look like JSON is never decoded by mistake.
 _JSON_ATTRS_KEY = "json_attributes"
 _RESERVED_ATTRS = {"format", "format_version", "fastrest_version", "checksum",
                    "checksum_algorithm", _JSON_ATTRS_KEY}
-
-
-class TableFileError(ValueError):
-    """A table file is missing, truncated, corrupted, foreign or of a newer format.
-
-    The message names the file and the problem.
-    """
 
 
 @dataclass(frozen=True)
@@ -70,6 +76,8 @@ class TableData:
         Axis names along each dimension of every dataset (``()`` for a scalar).
     long_names : dict of str to str
         Descriptive name of every axis and dataset.
+    digest : str
+        SHA-256 hex digest of the file's bytes after its header (kept in the header).
     """
 
     axes: dict
@@ -79,6 +87,7 @@ class TableData:
     path: str
     dims: dict = field(default_factory=dict)
     long_names: dict = field(default_factory=dict)
+    digest: str = ""
 
 
 def write_table(path, axes, datasets, attrs):
@@ -103,11 +112,14 @@ def write_table(path, axes, datasets, attrs):
     ------
     TypeError, ValueError
         If the inputs cannot be stored; nothing is written then.
+    OSError
+        If the file cannot be written (disk full, read-only, a directory...); the message names
+        ``path``, the old file is untouched and no temporary file remains.
 
     Notes
     -----
-    The table is written to ``tempfile.mkstemp(dir=<target directory>, suffix=".tmp")``,
-    flushed to disk and renamed over the target with `os.replace`. If writing raises, the
+    The file is built in memory (HDF5 never writes to disk), then written to
+    ``tempfile.mkstemp(dir=<target directory>, suffix=".tmp")``, flushed to disk and renamed over the target with `os.replace`. If writing raises, the
     temporary file is removed and the target is untouched. If the process is killed while
     writing, the target is also untouched but a stray ``*.tmp`` file may remain in the
     directory; it is never mistaken for a table and can be deleted.
@@ -124,42 +136,32 @@ def write_table(path, axes, datasets, attrs):
                  checksum_algorithm=_CHECKSUM_ALGORITHM)
 
     mode = _file_mode(path)
-    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)), suffix=".tmp")
-    os.close(fd)
-    try:
-        # locking=False: HDF5 file locking fails on some network file systems, and the
-        # temporary file is ours alone.
-        with h5py.File(tmp, "w", locking=False) as f:
-            scales = {}
-            for name in sorted(axes):
-                values, units, long_name = axes[name]
-                scales[name] = _write_variable(f, name, values, units, long_name)
-                scales[name].make_scale(name)
-            for name in sorted(datasets):
-                values, dims, units, long_name = datasets[name]
-                dset = _write_variable(f, name, values, units, long_name)
-                for i, axis in enumerate(dims):
-                    dset.dims[i].attach_scale(scales[axis])
-            for key in sorted(attrs):
-                f.attrs[key] = attrs[key]
-            f.flush()
-        # Make the data durable before the rename makes it visible.
-        with open(tmp, "r+b") as fh:
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.remove(tmp)
-        except OSError:
-            pass
-        raise
+    # The whole file is built in memory and written by _tablefile: HDF5 never sees a write error
+    # (h5py closing a file after a failed write, e.g. on a full disk, segfaulted).
+    buffer = io.BytesIO()
+    with h5py.File(buffer, "w", userblock_size=USERBLOCK) as f:
+        scales = {}
+        for name in sorted(axes):
+            values, units, long_name = axes[name]
+            scales[name] = _write_variable(f, name, values, units, long_name)
+            scales[name].make_scale(name)
+        for name in sorted(datasets):
+            values, dims, units, long_name = datasets[name]
+            dset = _write_variable(f, name, values, units, long_name)
+            for i, axis in enumerate(dims):
+                dset.dims[i].attach_scale(scales[axis])
+        for key in sorted(attrs):
+            f.attrs[key] = attrs[key]
+    write_atomic(path, buffer.getbuffer(), mode)
 
 
 def read_table(path):
     """Read a table file written by `write_table` into memory.
 
-    The file is opened once, read completely into NumPy arrays and closed.
+    The file is read with plain reads and verified (regular file, size, SHA-256 digest of its
+    bytes, see :mod:`fastrest._tablefile`) before HDF5 parses it from memory; then every object is
+    checked (datasets only, no links, no virtual or external storage, float64 or integer data
+    inside the file, bounded attributes) before any array is allocated.
 
     Parameters
     ----------
@@ -173,27 +175,30 @@ def read_table(path):
     Raises
     ------
     TableFileError
-        If the file does not exist, is not a (complete) HDF5 file, is not a fastrest table,
-        has a newer format version than this fastrest reads, or fails its integrity checks
-        (missing axis, missing or mismatching checksum).
+        If the file does not exist, is not a regular file, is not a (complete) table file, fails
+        its digest or its checks, is not a fastrest table, or has a newer format version than this
+        fastrest reads. Nothing else: whatever a damaged or hostile file makes HDF5 or the checks
+        raise becomes a TableFileError naming the file.
     """
     path = os.fspath(path)
-    if not os.path.exists(path):
-        raise TableFileError(f"{path}: table file does not exist")
+    data, digest = read_verified(path)
     try:
-        # locking=False: HDF5 file locking fails on some network file systems; files are
-        # replaced atomically, so a reader never sees one being written.
-        with h5py.File(path, "r", locking=False) as f:
-            table = _read_open_file(f, path)
+        # HDF5 reads the verified bytes from memory: the file on disk may change meanwhile.
+        fapl = h5py.h5p.create(h5py.h5p.FILE_ACCESS)
+        fapl.set_fapl_core(backing_store=False)
+        fapl.set_file_image(data)
+        name = f"fastrest-table-image-{next(_IMAGE_IDS)}".encode()
+        with h5py.File(h5py.h5f.open(name, h5py.h5f.ACC_RDONLY, fapl=fapl)) as f:
+            table = _read_open_file(f, path, len(data))
     except TableFileError:
         raise
-    except (OSError, KeyError, RuntimeError, ValueError, TypeError) as exc:
-        raise TableFileError(f"{path}: cannot be read as HDF5 (not an HDF5 file, or "
-                             f"truncated or corrupted): {exc}") from exc
+    except Exception as exc:  # anything a hostile file provokes in HDF5, h5py or the checks
+        raise TableFileError(f"{path}: cannot be read as a table file (corrupted or not a fastrest "
+                             f"table): {type(exc).__name__}: {exc}") from exc
 
     stored = table.attrs.get("checksum")
     if not isinstance(stored, str):
-        raise TableFileError(f"{path}: no checksum attribute; the file is incomplete or "
+        raise TableFileError(f"{path}: no (string) checksum attribute; the file is incomplete or "
                              "corrupted, rebuild the table")
     algorithm = table.attrs.get("checksum_algorithm")
     if algorithm != _CHECKSUM_ALGORITHM:
@@ -202,12 +207,15 @@ def read_table(path):
     if computed != stored:
         raise TableFileError(f"{path}: checksum mismatch (stored {stored}, computed "
                              f"{computed}); the file is corrupted, rebuild the table")
-    return table
+    return replace(table, digest=digest)
 
 
-def _read_open_file(f, path):
-    """Check the format attributes of an open file and read its contents."""
-    attrs = {key: _plain(value) for key, value in f.attrs.items()}
+def _read_open_file(f, path, limit):
+    """Check the format attributes and every object of an open file, then read its contents.
+
+    ``limit``: the file's size in bytes; nothing declaring more data than that is read.
+    """
+    attrs = {key: _plain(value) for key, value in _checked_attrs(f, path, limit, "the root group")}
     if attrs.get("format") != FORMAT_NAME:
         raise TableFileError(f"{path}: not a fastrest table (HDF5 file without the root "
                              f"attribute format={FORMAT_NAME!r})")
@@ -223,10 +231,12 @@ def _read_open_file(f, path):
     for key in json.loads(attrs.pop(_JSON_ATTRS_KEY, "[]")):
         attrs[key] = json.loads(attrs[key])
 
+    names = list(f)
+    if len(names) > _MAX_OBJECTS:
+        raise TableFileError(f"{path}: {len(names)} objects, more than a table holds ({_MAX_OBJECTS})")
     axes, datasets, units, long_names, dims = {}, {}, {}, {}, {}
-    for name, obj in f.items():
-        if not isinstance(obj, h5py.Dataset):
-            continue  # not part of format version 1; tolerated
+    for name in names:
+        obj = _checked_dataset(f, name, path, limit)
         values = np.asarray(obj[()])
         (axes if h5py.h5ds.is_scale(obj.id) else datasets)[name] = values
         units[name] = _plain(obj.attrs.get("units", ""))
@@ -241,6 +251,57 @@ def _read_open_file(f, path):
                                      f"{axes[axis].shape}")
     return TableData(axes=axes, datasets=datasets, attrs=attrs, units=units, path=path,
                      dims=dims, long_names=long_names)
+
+
+def _checked_attrs(obj, path, limit, where):
+    """(name, value) of every attribute of ``obj``, each checked to declare at most ``limit``
+    bytes before it is read."""
+    names = list(obj.attrs)
+    if len(names) > _MAX_ATTRS:
+        raise TableFileError(f"{path}: {where} has {len(names)} attributes, more than a table "
+                             f"holds ({_MAX_ATTRS})")
+    out = []
+    for name in names:
+        aid = obj.attrs.get_id(name)
+        if math.prod(aid.shape or ()) * aid.dtype.itemsize > limit:
+            raise TableFileError(f"{path}: attribute {name!r} of {where} declares shape {aid.shape}, "
+                                 "more data than the file holds")
+        out.append((name, obj.attrs[name]))
+    return out
+
+
+def _checked_dataset(f, name, path, limit):
+    """The dataset ``name`` after checking that it is a plain array stored inside the file."""
+    link = f.get(name, getlink=True)
+    if not isinstance(link, h5py.HardLink):
+        kind = "an external link" if isinstance(link, h5py.ExternalLink) else "a soft link"
+        raise TableFileError(f"{path}: {name!r} is {kind}; a table file holds only datasets")
+    obj = f[name]
+    if not isinstance(obj, h5py.Dataset):
+        raise TableFileError(f"{path}: {name!r} is a {type(obj).__name__}; a table file holds "
+                             "only datasets")
+    dt = obj.dtype
+    if not (dt.kind in "iuf" and dt.names is None and dt.shape == () and dt.itemsize <= 8
+            and (dt.kind != "f" or dt.itemsize == 8) and h5py.check_enum_dtype(dt) is None):
+        raise TableFileError(f"{path}: dataset {name!r} has data type {dt}; a table file holds "
+                             "float64 and integer arrays only")
+    plist = obj.id.get_create_plist()
+    layout = plist.get_layout()
+    if layout == h5py.h5d.VIRTUAL:
+        raise TableFileError(f"{path}: dataset {name!r} is a virtual dataset (data from other "
+                             "files); refused")
+    if plist.get_external_count():
+        raise TableFileError(f"{path}: dataset {name!r} keeps its data in external files; refused")
+    if layout != h5py.h5d.CONTIGUOUS or plist.get_nfilters():
+        raise TableFileError(f"{path}: dataset {name!r} is not stored contiguously and "
+                             "uncompressed, as fastrest writes it")
+    nbytes = math.prod(obj.shape or ()) * dt.itemsize
+    offset, stored = obj.id.get_offset(), obj.id.get_storage_size()
+    if nbytes and (offset is None or stored != nbytes or not 0 <= offset <= limit - nbytes):
+        raise TableFileError(f"{path}: dataset {name!r} declares shape {obj.shape} ({nbytes} "
+                             f"bytes) but its data is not inside the file")
+    _checked_attrs(obj, path, limit, f"dataset {name!r}")
+    return obj
 
 
 def _dim_axis(dset, i, axes, path):

@@ -3,6 +3,7 @@
 import argparse
 import json
 import math
+import os
 import sys
 import time
 import warnings
@@ -135,11 +136,21 @@ def _cmd_build(args):
     from .table_error import DEFAULT_TOL
 
     tol = args.tol if args.tol is not None else (DEFAULT_TOL if args.default else None)
+    from .table_error import AccuracyWarning
+
     t0 = time.perf_counter()
-    table = tables.build(out, grid, progress=None if args.progress else False, tol=tol)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", AccuracyWarning)
+        table = tables.build(out, grid, progress=None if args.progress else False, tol=tol)
     dt = time.perf_counter() - t0
     print(f"wrote {table.path} in {dt:.1f} s" + (f" (tol {tol:g})" if tol is not None else ""))
     _print_errors(table.attrs.get("measured_error", {}))
+    for w in caught:  # one line each, after the table was written
+        if issubclass(w.category, AccuracyWarning):
+            print(f"fastrest build: warning: {str(w.message).removeprefix('fastrest.tables.build: ')}",
+                  file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return 0
 
 
@@ -306,11 +317,24 @@ def main(argv=None):
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
     args = p.parse_args(argv)
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
+        return code
+    except BrokenPipeError:
+        # the reader went away (`fastrest info --json FILE | head`): stop quietly, as cat does;
+        # stdout goes to /dev/null so that the interpreter's final flush does not complain
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError):
+            pass
+        return 141  # 128 + SIGPIPE, what a shell reports for a command killed by SIGPIPE
     except (ValueError, TypeError) as exc:
         cmd = args.cmd + (f" {args.what}" if getattr(args, "what", None) else "")
         print(f"fastrest {cmd}: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # unwritable --out, full disk: the message names the file
+        print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

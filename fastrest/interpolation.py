@@ -17,6 +17,8 @@ evaluate that node one ulp inside the cell). :data:`GAUSS_U` (first-kind Chebysh
 the ends) serves functions that may not be evaluated at a cell's ends (a user's height pdf).
 """
 
+import math
+
 import numba as nb
 import numpy as np
 from llvmlite import ir
@@ -28,10 +30,11 @@ ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
 MANTISSA_BITS = 52
 
 #: Chebyshev-Lobatto points on [-1, 1] (both ends included), increasing; the ends exactly -1 and 1.
-CHEB_U = -np.cos(np.pi * np.arange(DEGREE + 1) / DEGREE)
-CHEB_U[0], CHEB_U[-1] = -1.0, 1.0
+#: (math.cos: NumPy's vectorised cos may differ in the last bit between CPU instruction sets, and
+#: the table files store these points.)
+CHEB_U = np.array([-1.0] + [-math.cos(math.pi * k / DEGREE) for k in range(1, DEGREE)] + [1.0])
 #: Chebyshev points of the first kind (interior only).
-GAUSS_U = np.cos(np.pi * (np.arange(DEGREE + 1)[::-1] + 0.5) / (DEGREE + 1))
+GAUSS_U = np.array([math.cos(math.pi * (k + 0.5) / (DEGREE + 1)) for k in range(DEGREE, -1, -1)])
 _TO_COEFFS = {id(CHEB_U): np.linalg.inv(np.vander(CHEB_U, DEGREE + 1, increasing=True)),
               id(GAUSS_U): np.linalg.inv(np.vander(GAUSS_U, DEGREE + 1, increasing=True))}
 VALUES_TO_COEFFS = _TO_COEFFS[id(CHEB_U)]

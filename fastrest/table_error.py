@@ -48,8 +48,9 @@ def _materials(g, n_random, rng):
     e_in, n_in = (np.nextafter(e0, e1), np.nextafter(e1, e0)), (np.nextafter(n0, n1), np.nextafter(n1, n0))
     pts = [(e, n) for e in (e0, e1) + e_in for n in (n0, n1) + n_in]                 # corners
     for t in np.linspace(0.0, 1.0, 27)[1:-1]:                                         # edges
+        t = float(t)
         pts += [(e0, n0 + t * (n1 - n0)), (e1, n0 + t * (n1 - n0)),
-                (e0 * (e1 / e0) ** t, n0), (e0 * (e1 / e0) ** t, n1)]
+                (e0 * math.pow(e1 / e0, t), n0), (e0 * math.pow(e1 / e0, t), n1)]
     pts += list(zip(rng.uniform(e0, e1, n_random), rng.uniform(n0, n1, n_random)))    # inside
     return np.array(pts)
 
@@ -69,7 +70,9 @@ def adversarial_points(table, n_random_materials=24, n_random_speeds=16, seed=20
     for eps, nu in _materials(g, n_random_materials, rng):
         lim = v1_star_limit(eps, nu)
         last = [lim, lim * (1 - 1e-12), lim * (1 - 1e-6), lim * (1 - 1e-3)]
-        rand = np.exp(rng.uniform(0.0, math.log(lim), n_random_speeds))
+        # math, not NumPy's vectorised exp: its last bit depends on the CPU's instruction set, and
+        # the measured error (stored in the file) must not
+        rand = np.array([math.exp(x) for x in rng.uniform(0.0, math.log(lim), n_random_speeds)])
         s = np.concatenate([cell_pts[cell_pts <= lim], last, rand])
         v.append(s)
         e.append(np.full(s.size, eps))

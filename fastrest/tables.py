@@ -21,13 +21,14 @@ import hashlib
 import json
 import math
 import os
+import warnings
 from collections import namedtuple
 from pathlib import Path
 
 import numba as nb
 import numpy as np
 
-from . import _hdf5
+from . import _hdf5, _tablefile
 from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check_nu, check_eps_y, real_scalar,
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
@@ -218,13 +219,18 @@ def xi_range(g):
     """The s axis is uniform in xi = expm1(k s)/k (k = c_eps_y_map_rate; xi = s for k = 0), denser
     where s, and with it a/R, is large and the law varies fastest (bench/RESULTS.md compares grids)."""
     k = g["c_eps_y_map_rate"]
-    lo = yield_parameter(g["eps_y_min"], g["nu_min"])
-    hi = yield_parameter(g["eps_y_max"], g["nu_max"])
-    return (np.expm1(k * lo) / k, np.expm1(k * hi) / k) if k > 0 else (lo, hi)
+    lo = float(yield_parameter(g["eps_y_min"], g["nu_min"]))
+    hi = float(yield_parameter(g["eps_y_max"], g["nu_max"]))
+    return (math.expm1(k * lo) / k, math.expm1(k * hi) / k) if k > 0 else (lo, hi)
 
 
 def s_of_xi(xi, k):
-    return np.log1p(k * xi) / k if k > 0 else xi
+    """Inverse of the xi map, element by element with math.log1p (see :func:`_geomspace`: NumPy's
+    vectorised log1p is not bit-reproducible across CPUs)."""
+    xi = np.asarray(xi, dtype=np.float64)
+    if not k > 0:
+        return xi
+    return np.array([math.log1p(k * x) / k for x in xi.ravel()]).reshape(xi.shape)
 
 
 def grid_axes(g):
@@ -236,9 +242,23 @@ def grid_axes(g):
     v_top = max(v1_star_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
                 for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
     layout = cell_layout(g, v_top)
-    omega = np.concatenate([np.linspace(0.0, W_SWITCH, OMEGA_GRID_HERTZ),
-                            np.geomspace(W_SWITCH, OMEGA_M_STAR_MAX, OMEGA_GRID_JG + 1)[1:]])
-    return s, eps, nus, v_top, layout, omega
+    return s, eps, nus, v_top, layout, grid_axes_omega()
+
+
+def grid_axes_omega():
+    """The w* grid of W*: uniform on [0, 1.9], log-spaced on [1.9, 425]."""
+    return np.concatenate([np.linspace(0.0, W_SWITCH, OMEGA_GRID_HERTZ),
+                           _geomspace(W_SWITCH, OMEGA_M_STAR_MAX, OMEGA_GRID_JG + 1)[1:]])
+
+
+def _geomspace(a, b, n):
+    """np.geomspace with the math module's scalar exp and log: NumPy's vectorised exp, log,
+    log1p and expm1 differ in the last bit between CPU instruction sets (AVX-512 or not), which
+    made the shipped table differ by ~1e-15 from one machine to another."""
+    la, lb = math.log(a), math.log(b)
+    out = np.array([math.exp(la + (lb - la) * i / (n - 1)) for i in range(n)])
+    out[0], out[-1] = a, b
+    return out
 
 
 def eps_y_blocks(g, edges):
@@ -647,7 +667,9 @@ def sample_points(grid, n_points, seed):
     e = rng.uniform(g["eps_y_min"], g["eps_y_max"], n_points)
     n = rng.uniform(g["nu_min"], g["nu_max"], n_points)
     vmax = np.array([v1_star_limit(a, b) for a, b in zip(e, n)])
-    v = np.exp(rng.uniform(0.0, 1.0, n_points) * np.log(vmax))
+    # math.exp/log per point: NumPy's vectorised ones are not bit-reproducible across CPUs, and
+    # the measured error is written into the table file
+    v = np.array([math.exp(u * math.log(m)) for u, m in zip(rng.uniform(0.0, 1.0, n_points), vmax)])
     hard = np.array([1.0, 1 + 1e-12, 1 + 1e-9, V_SWITCH * (1 - 1e-12), V_SWITCH * (1 + 1e-12),
                      V_SWITCH * (1 + 1e-6), 3.0, 60.0])
     k = len(hard)
@@ -725,23 +747,32 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
     (e.g. 1e-9): refine the grid's node counts until the measured error meets it, or raise
     ValueError naming the error reached (:func:`fastrest.table_error.build_to_tolerance`).
     Without ``tol`` a table whose measured error exceeds 1e-9 is written with an
-    :class:`~fastrest.table_error.AccuracyWarning`.
+    :class:`~fastrest.table_error.AccuracyWarning`. Raises OSError naming the file, before the
+    (long) generation where it can tell, if the file cannot be written (a directory, a read-only
+    or full file system); an existing file is then unchanged.
     """
     from . import table_error
 
+    g = normalise_grid(grid)
     if tol is not None:
         tol = _check_tol(tol)
-        gen, table, errors, _ = table_error.build_to_tolerance(grid, tol, progress=progress)
+    if path is None:
+        path = cache_dir() / f"{grid_key(g)}.h5"
+    path = Path(path)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OSError(exc.errno, f"cannot create the directory of table file {str(path)!r}: "
+                                 f"{exc.strerror}") from None
+    _tablefile.check_target(path)
+    if tol is not None:
+        gen, table, errors, _ = table_error.build_to_tolerance(g, tol, progress=progress)
     else:
-        gen = generate(grid, progress=progress)
+        gen = generate(g, progress=progress)
         table = Table(gen)
         errors = table.measure_error() if measure else None
         if errors is not None:
             table_error.warn_if_inaccurate(errors, None, "fastrest.tables.build")
-    if path is None:
-        path = cache_dir() / f"{grid_key(gen['grid'])}.h5"
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     write(gen, path, errors)
     table.attrs = {"measured_error": errors} if errors else {}
     table.path = str(path)
@@ -749,13 +780,19 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
 
 
 def read(path):
-    """Read a table file into a :class:`Table` (validates format version and checksum)."""
+    """Read a table file into a :class:`Table`.
+
+    Verifies the file (see :func:`fastrest._hdf5.read_table`: digest, structure), its format
+    version, and that every array has the dtype (float64), dimensions, shape and finiteness the grid
+    attributes imply, with the counts checked before anything sized by them is allocated. Raises
+    TableFileError (naming the file) and nothing else for a damaged, foreign or hostile file.
+    """
     td = _hdf5.read_table(path)
     a = td.attrs
     if a.get("format_version") != _hdf5.FORMAT_VERSION:
         raise _hdf5.TableFileError(
             f"{path}: table format version {a.get('format_version')} is older than this fastrest's "
-            f"({_hdf5.FORMAT_VERSION}, different V1* cell layout); rebuild it with `fastrest build`")
+            f"({_hdf5.FORMAT_VERSION}); rebuild it with `fastrest build`")
     try:
         g = normalise_grid(a["grid"])
         cells = a["cells"]
@@ -763,10 +800,11 @@ def read(path):
         held = str(a.get("unloading_models", "jcg,etsion")).split(",")  # files before Brake: two models
         if held != list(_unloading.NAMES[:len(held)]) or not held:
             raise ValueError(f"unloading models {held} are not a prefix of this fastrest's {_unloading.NAMES}")
+        _check_file_arrays(td, g, cells, QUANTITIES[:1 + 2 * len(held)])
         blocks = [dict(cell0=int(c0), cell1=int(c1), n=int(n), c_eps_y=td.axes[f"c_eps_y_{k}"],
                        values=np.stack([ds[f"{q}_{k}"] for q in QUANTITIES[:1 + 2 * len(held)]]))
                   for k, (c0, c1, n) in enumerate(cells["blocks"])]
-        gen = dict(grid=g, eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=cells["v1_star_top"],
+        gen = dict(grid=g, eps_y=td.axes["eps_y"], nu=td.axes["nu"], v_top=float(cells["v1_star_top"]),
                    base_fine=cells["first_key_fine"], base=cells["first_key"],
                    edges=np.stack([td.axes["cell"], ds["cell_end"]], 1), nodes=ds["v1_star_nodes"],
                    blocks=blocks, omega_star=td.axes["omega_star"], W_star=ds["W_star"],
@@ -774,9 +812,79 @@ def read(path):
         if cells["degree"] != DEGREE or not np.array_equal(td.axes["node"], CHEB_U):
             raise ValueError("cell polynomial degree or nodes differ from this fastrest's")
         _check_axes_match_grid(gen)
-    except (KeyError, TypeError, ValueError) as exc:
-        raise _hdf5.TableFileError(f"{path}: not a fastrest restitution table ({exc})") from exc
-    return Table(gen, attrs=a, path=str(path))
+        table = Table(gen, attrs=a, path=str(path))
+    except Exception as exc:  # whatever a damaged or hostile file provokes: a file error
+        raise _hdf5.TableFileError(f"{path}: not a valid fastrest restitution table "
+                                   f"({type(exc).__name__}: {exc})") from exc
+    return table
+
+
+#: Bounds on what a table's attributes may declare (checked before anything is allocated).
+MAX_NODES = 100000
+MAX_V1_STAR_TOP = 2.0**20
+
+
+def _check_file_arrays(td, g, cells, quantities):
+    """Datasets, dims, dtypes, shapes and finiteness of a read file against its grid attributes;
+    the counts the grid declares must equal the stored ones (bounded by the file's size) before
+    :func:`_check_axes_match_grid` allocates arrays of those sizes."""
+    blocks = cells["blocks"]
+    if not (isinstance(blocks, list) and 1 <= len(blocks) <= 64 and all(
+            isinstance(b, list) and len(b) == 3 and all(type(x) is int and 0 <= x <= MAX_NODES for x in b)
+            for b in blocks)):
+        raise ValueError(f"cells: blocks must be up to 64 [cell0, cell1, n] of integers; got {str(blocks)[:200]}")
+    counts = [g["n_eps_y"], g["n_nu"], g["n_eps_y_energy"]] + [n for _, n in g["eps_y_blocks"]]
+    if not all(1 <= n <= MAX_NODES for n in counts):
+        raise ValueError(f"grid: node counts {counts} outside [1, {MAX_NODES}]")
+    v_top = cells["v1_star_top"]
+    if not (type(v_top) is float and V_SWITCH < v_top <= MAX_V1_STAR_TOP):
+        raise ValueError(f"cells: v1_star_top = {v_top!r} outside ({V_SWITCH:.6g}, {MAX_V1_STAR_TOP:g}]")
+    ncell = blocks[-1][1]
+    if cells["count"] != ncell or blocks[0][0] != 0 or any(b[0] != a[1] or b[1] <= b[0]
+                                                            for a, b in zip(blocks, blocks[1:])):
+        raise ValueError("cells: blocks do not cover the cells one after another")
+    want = {"eps_y": (), "nu": (), "cell": (), "node": (), "omega_star": (),
+            "W_star": ("eps_y", "nu", "omega_star"), "v1_star_max": ("eps_y", "nu"),
+            "cell_end": ("cell",), "v1_star_nodes": ("cell", "node")}
+    for k in range(len(blocks)):
+        want.update({f"c_eps_y_{k}": (), f"cell_{k}": ()})
+        want.update({f"{q}_{k}": (f"c_eps_y_{k}", "nu", f"cell_{k}", "node") for q in quantities})
+    got = dict.fromkeys(td.axes, ())
+    got.update(td.dims)
+    if got != want:
+        raise ValueError(f"datasets and dimensions {sorted(got.items())} differ from the layout of "
+                         f"a restitution table")
+    sizes = {"eps_y": g["n_eps_y_energy"], "nu": g["n_nu"], "cell": ncell, "node": DEGREE + 1,
+             "omega_star": OMEGA_GRID_HERTZ + OMEGA_GRID_JG}
+    for k, (c0, c1, n) in enumerate(blocks):
+        # every block but the last also stores the next block's first cell (the blend)
+        sizes.update({f"c_eps_y_{k}": n, f"cell_{k}": c1 - c0 + (k < len(blocks) - 1)})
+    for name, n in sizes.items():
+        if td.axes[name].shape != (n,):
+            raise ValueError(f"axis {name!r} has shape {td.axes[name].shape}, the attributes say ({n},)")
+    for name, values in {**td.axes, **td.datasets}.items():
+        if values.dtype != np.float64:
+            raise ValueError(f"{name!r} has dtype {values.dtype}, not float64")
+        if name != "W_star" and not np.isfinite(values).all():
+            raise ValueError(f"{name!r} holds NaN or infinite values")
+    # Plausibility (a file with recomputed checksums can hold any finite numbers): w_m* > 1 above
+    # the elastic range, 0 < e < 2, and each loss equal to 1 - e^2 to rounding
+    for k in range(len(blocks)):
+        if not (td.datasets[f"omega_m_star_{k}"] > 1.0).all():
+            raise ValueError(f"'omega_m_star_{k}' holds values <= 1 (the table starts above the elastic range)")
+        for q in quantities[1::2]:
+            e, loss = td.datasets[f"{q}_{k}"], td.datasets[f"loss{q[1:]}_{k}"]
+            if not ((e > 0.0) & (e < 2.0) & (np.abs(loss - (1.0 - e * e)) <= 1e-12)).all():
+                raise ValueError(f"'{q}_{k}' or 'loss{q[1:]}_{k}' is not a coefficient of restitution and its "
+                                 "1 - e^2")
+    # W* = 1 - F is NaN exactly past the end of the law (a/R = 1), where the generator leaves it so
+    w, e, n = td.axes["omega_star"], td.axes["eps_y"], td.axes["nu"]
+    lim = np.array([[omega_star_limit_kernel(x, y) for y in n] for x in e])[:, :, None]
+    past = (w > W_SWITCH) & (w >= lim * (1 + 1e-12))
+    before = (w <= W_SWITCH) | (w < lim * (1 - 1e-12))
+    ws = td.datasets["W_star"]
+    if np.isinf(ws).any() or not np.isnan(ws[past]).all() or np.isnan(ws[before]).any():
+        raise ValueError("'W_star' holds NaN or infinite values where the law is defined")
 
 
 def _check_axes_match_grid(gen):
@@ -791,7 +899,12 @@ def _check_axes_match_grid(gen):
     for b, got in zip(blocks, gen["blocks"]):
         if got["values"].shape[1:] != (b["n"], nus.size, b["cstop"] - b["cell0"], DEGREE + 1):
             raise ValueError("a block's values do not have the shape of the grid attributes")
-    checks = [("nu", nus, gen["nu"]), ("eps_y", eps_w, gen["eps_y"]), ("cell", layout["edges"], gen["edges"])]
+    omega = grid_axes_omega()
+    v_max = np.array([[v1_star_limit(e, n) for n in gen["nu"]] for e in gen["eps_y"]])
+    checks = [("nu", nus, gen["nu"]), ("eps_y", eps_w, gen["eps_y"]), ("cell", layout["edges"], gen["edges"]),
+              ("omega_star", omega, gen["omega_star"]),
+              ("v1_star_nodes", jg_nodes(layout["edges"], gen["v_top"]).reshape(gen["nodes"].shape), gen["nodes"]),
+              ("v1_star_max", v_max, gen["v1_star_max"])]
     checks += [(f"c_eps_y_{k}", b["c_eps_y"], got["c_eps_y"]) for k, (b, got) in enumerate(zip(blocks, gen["blocks"]))]
     for name, want, got in checks:
         if want.shape != got.shape or not np.allclose(want, got, rtol=1e-12, atol=0):
@@ -852,7 +965,10 @@ def cached_table(grid=None, progress=None, tol=None):
     """A table for any grid: the shipped one if it matches, else the user cache, built on first use.
 
     ``tol``: build it to that accuracy (refining the grid's node counts; see :func:`build`), and
-    warn if a table found in the cache does not meet it."""
+    warn if a table found in the cache does not meet it. A cached file that fails verification
+    (:class:`TableFileError`) is rebuilt with a RuntimeWarning. Raises OSError naming the file if
+    it cannot be written (e.g. a full disk).
+    """
     g = normalise_grid(grid)
     if tol is not None:
         tol = _check_tol(tol)
@@ -860,8 +976,15 @@ def cached_table(grid=None, progress=None, tol=None):
         return load_table(tol=tol)
     key = grid_key(g) if tol is None else f"{grid_key(g)}-tol{tol:.0e}"
     path = cache_dir() / f"{key}.h5"
-    if not path.exists():
-        build(path, g, progress=progress, tol=tol)
+    if os.path.lexists(path):
+        try:
+            return load_table(path, tol=tol)
+        except _hdf5.TableFileError as exc:
+            # a damaged cache entry is rebuilt, not re-raised on every call
+            warnings.warn(f"rebuilding the cached table: {exc}", RuntimeWarning, stacklevel=2)
+            if not path.is_file() and not path.is_dir():
+                path.unlink()  # a FIFO, device or link to one in the cache: a table never replaces those
+    build(path, g, progress=progress, tol=tol)
     return load_table(path, tol=tol)
 
 

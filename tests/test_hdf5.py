@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 import fastrest
-from fastrest import _hdf5
+from fastrest import _hdf5, _tablefile
 from fastrest._hdf5 import FORMAT_NAME, FORMAT_VERSION, TableFileError, read_table, write_table
+from damaged_corpus import reseal
 
 
 def example():
@@ -138,8 +139,7 @@ def test_truncated_file(tmp_path):
     assert str(path) in str(excinfo.value)
 
 
-def test_flipped_data_byte_fails_checksum(tmp_path):
-    path = write_example(tmp_path / "table.h5")
+def flip_data_byte(path):
     with h5py.File(path, "r") as f:
         offset = f["restitution"].id.get_offset()
         size = f["restitution"].id.get_storage_size()
@@ -149,15 +149,49 @@ def test_flipped_data_byte_fails_checksum(tmp_path):
         byte = fh.read(1)[0]
         fh.seek(offset + size // 2)
         fh.write(bytes([byte ^ 0xFF]))
-    with pytest.raises(TableFileError, match="checksum") as excinfo:
+
+
+def test_flipped_data_byte_fails_digest(tmp_path):
+    path = write_example(tmp_path / "table.h5")
+    flip_data_byte(path)
+    with pytest.raises(TableFileError, match="digest mismatch") as excinfo:
         read_table(path)
     assert str(path) in str(excinfo.value)
+
+
+def test_flipped_data_byte_with_recomputed_digest_fails_checksum(tmp_path):
+    """The arrays' checksum attribute still catches a change whose file digest was recomputed."""
+    path = write_example(tmp_path / "table.h5")
+    flip_data_byte(path)
+    reseal(path)
+    with pytest.raises(TableFileError, match="checksum mismatch") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value)
+
+
+def test_header_holds_size_and_digest_of_the_bytes(tmp_path):
+    """The first 512 bytes (HDF5's user block) hold the size and SHA-256 of the rest, which a
+    reader can check with plain reads; h5py sees an ordinary HDF5 file with a user block."""
+    import hashlib
+
+    path = write_example(tmp_path / "table.h5")
+    data = path.read_bytes()
+    text = data[:512].rstrip(b"\0").decode("ascii").splitlines()
+    assert text == ["fastrest-table-file 1", f"size {len(data)}",
+                    f"sha256 {hashlib.sha256(data[512:]).hexdigest()}"]
+    assert data[512:520] == b"\x89HDF\r\n\x1a\n"
+    assert read_table(path).digest == hashlib.sha256(data[512:]).hexdigest()
+    with h5py.File(path, "r") as f:
+        assert f.userblock_size == 512 and f.attrs["format"] == FORMAT_NAME
 
 
 def test_missing_checksum(tmp_path):
     path = write_example(tmp_path / "table.h5")
     with h5py.File(path, "a") as f:
         del f.attrs["checksum"]
+    with pytest.raises(TableFileError, match="digest"):
+        read_table(path)
+    reseal(path)
     with pytest.raises(TableFileError, match="checksum"):
         read_table(path)
 
@@ -166,6 +200,7 @@ def test_missing_axis(tmp_path):
     path = write_example(tmp_path / "table.h5")
     with h5py.File(path, "a") as f:
         del f["nu"]
+    reseal(path)
     with pytest.raises(TableFileError, match="missing axis") as excinfo:
         read_table(path)
     assert "restitution" in str(excinfo.value)
@@ -175,6 +210,12 @@ def test_foreign_hdf5_file(tmp_path):
     path = tmp_path / "foreign.h5"
     with h5py.File(path, "w") as f:
         f["data"] = np.arange(4.0)
+    with pytest.raises(TableFileError, match="without a fastrest header") as excinfo:
+        read_table(path)
+    assert str(path) in str(excinfo.value) and "rebuild" in str(excinfo.value)
+    with h5py.File(path, "w", userblock_size=512) as f:  # with a valid header
+        f["data"] = np.arange(4.0)
+    reseal(path)
     with pytest.raises(TableFileError, match="not a fastrest table") as excinfo:
         read_table(path)
     assert str(path) in str(excinfo.value)
@@ -184,6 +225,7 @@ def test_newer_format_version(tmp_path):
     path = write_example(tmp_path / "table.h5")
     with h5py.File(path, "a") as f:
         f.attrs["format_version"] = FORMAT_VERSION + 1
+    reseal(path)
     with pytest.raises(TableFileError) as excinfo:
         read_table(path)
     message = str(excinfo.value)
@@ -196,7 +238,7 @@ def test_newer_format_version(tmp_path):
 def test_not_an_hdf5_file(tmp_path):
     path = tmp_path / "random.h5"
     path.write_bytes(np.random.default_rng(0).bytes(4096))
-    with pytest.raises(TableFileError, match="HDF5") as excinfo:
+    with pytest.raises(TableFileError, match="not a fastrest table file") as excinfo:
         read_table(path)
     assert str(path) in str(excinfo.value)
 
@@ -230,8 +272,8 @@ def test_exception_while_writing_keeps_old_file(tmp_path, monkeypatch):
     def failing_write(f, name, *args):
         calls.append(name)
         if len(calls) == 3:
-            # Prove the failure happens midway, with the temporary file on disk.
-            assert len(list(tmp_path.glob("*.tmp"))) == 1
+            # The file is built in memory: nothing is on disk yet.
+            assert list(tmp_path.glob("*.tmp")) == []
             raise RuntimeError("simulated failure while writing")
         return original(f, name, *args)
 
@@ -247,23 +289,85 @@ def test_exception_while_writing_keeps_old_file(tmp_path, monkeypatch):
     assert list(tmp_path.glob("*.tmp")) == []
 
 
+class FailingOs:
+    """``os`` for fastrest._tablefile whose n-th write fails with ``code`` (after a short write)."""
+
+    def __init__(self, code, fail_at=2):
+        self.code, self.fail_at, self.writes = code, fail_at, 0
+
+    def __getattr__(self, name):
+        return getattr(os, name)
+
+    def write(self, fd, data):
+        self.writes += 1
+        if self.writes >= self.fail_at:
+            raise OSError(self.code, os.strerror(self.code))
+        return os.write(fd, data[:len(data) // 2])  # a short write first, as on a filling disk
+
+
+@pytest.mark.parametrize("code", [28, 5, 122])  # ENOSPC, EIO, EDQUOT
+def test_write_error_gives_oserror_naming_path_and_keeps_old_file(tmp_path, monkeypatch, code):
+    path = write_example(tmp_path / "table.h5")
+    before = path.read_bytes()
+    monkeypatch.setattr(_tablefile, "_CHUNK", 1024)
+    monkeypatch.setattr(_tablefile, "os", FailingOs(code, fail_at=3))
+    axes, datasets, attrs = example()
+    datasets["restitution"] = (np.zeros((5, 3)), ("velocity", "nu"), "1", "new content")
+    with pytest.raises(OSError) as excinfo:
+        write_table(path, axes, datasets, attrs)
+    assert excinfo.value.errno == code
+    assert str(path) in str(excinfo.value) and os.strerror(code) in str(excinfo.value)
+    monkeypatch.undo()
+    assert path.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["table.h5"]  # no temporary file left
+
+
+def test_unwritable_targets_give_oserror_naming_path(tmp_path):
+    axes, datasets, attrs = example()
+    (tmp_path / "dir.h5").mkdir()
+    targets = [tmp_path / "dir.h5", tmp_path / "missing-dir" / "t.h5"]
+    if os.path.exists("/dev/null"):
+        targets.append("/dev/null")  # never replaced by a table, even by root
+    if os.path.isdir("/proc/self"):
+        targets.append("/proc/self/table.h5")
+    for target in targets:
+        with pytest.raises(OSError) as excinfo:
+            write_table(target, axes, datasets, attrs)
+        assert str(target) in str(excinfo.value), excinfo.value
+    assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["dir.h5"]
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this system")
+def test_fifo_is_refused_without_blocking(tmp_path):
+    fifo = tmp_path / "table.h5"
+    os.mkfifo(fifo)
+    t0 = time.monotonic()
+    with pytest.raises(TableFileError, match="FIFO"):
+        read_table(fifo)
+    assert time.monotonic() - t0 < 5
+
+
 CHILD = textwrap.dedent("""
-    import sys, time
+    import os, sys, time
     import numpy as np
-    from fastrest import _hdf5
+    from fastrest import _hdf5, _tablefile
 
     target, marker = sys.argv[1], sys.argv[2]
-    original = _hdf5._write_variable
-    written = []
 
-    def write_then_stall(f, name, *args):
-        written.append(name)
-        if len(written) == 50:
+    class StallingOs:
+        # os for _tablefile: the first write goes through, then the writer waits to be killed
+        def __getattr__(self, name):
+            return getattr(os, name)
+
+        def write(self, fd, data):
+            n = os.write(fd, data)
             open(marker, "w").close()  # tell the parent we are inside write_table
-            time.sleep(60)             # and wait there to be killed
-        return original(f, name, *args)
+            time.sleep(60)
+            return n
 
-    _hdf5._write_variable = write_then_stall
+    _tablefile._CHUNK = 4096
+    _tablefile.os = StallingOs()
     x = np.linspace(0.0, 1.0, 10_000)
     datasets = {f"d{i:03d}": (x * i, ("x",), "1", f"dataset {i}") for i in range(200)}
     _hdf5.write_table(target, {"x": (x, "1", "x")}, datasets, {"title": "new"})
