@@ -11,7 +11,7 @@ denser than, and independent of, the one the table is built against (fastrest.ta
 Metrics: relative, except for a 1 - e^2 that changes sign (Etsion, Brake: e > 1 just above the
 switch), given both absolute and relative to max(|1 - e^2|, 0.1). Also: the largest jump at a cell
 boundary (value at the edge + 1 ulp minus at the edge - 1 ulp, in units of the value's ulp) and
-the number of boundaries where w_m* decreases or e increases by more than 4 ulp.
+the largest step against the model's direction (w_m* decreasing or e increasing), in ulp.
 """
 import argparse
 import datetime
@@ -89,8 +89,7 @@ def boundary_jumps(f, edges, direction):
     lo, hi = f(np.nextafter(edges, 0)), f(np.nextafter(edges, np.inf))
     ulp = np.spacing(np.abs(0.5 * (lo + hi)))
     jump = (hi - lo) / ulp
-    against = np.sum(direction * jump < -4)
-    return float(np.max(np.abs(jump))), int(against)
+    return float(np.max(np.abs(jump))), float(max(0.0, np.max(-direction * jump)))
 
 
 def sweep_curves(cfg, log):
@@ -115,7 +114,7 @@ def sweep_curves(cfg, log):
             for f, d in ((c.omega_m, 1), (c.e, -1)):
                 j, a = boundary_jumps(f, inner, d)
                 jumps["curve"][0] = max(jumps["curve"][0], j)
-                jumps["curve"][1] += a
+                jumps["curve"][1] = max(jumps["curve"][1], a)
         # the table's cell boundaries for this material (inside its range)
         t = fastrest.load_table()
         lim = direct.v1_star_limit(eps, nu)
@@ -124,7 +123,7 @@ def sweep_curves(cfg, log):
         for f, d in ((lambda x: fastrest.omega_m_star(x, eps, nu), 1), (lambda x: fastrest.e_star(x, eps, nu), -1)):
             j, a = boundary_jumps(f, inner, d)
             jumps["table"][0] = max(jumps["table"][0], j)
-            jumps["table"][1] += a
+            jumps["table"][1] = max(jumps["table"][1], a)
     log(f"  curves: {len(mats)} materials x {len(NAMES)} models")
     return res, jumps, len(mats)
 
@@ -152,10 +151,13 @@ def write(tab, cur, jumps, n_curves, cfg, path):
         loss = ", ".join(f"{k} {x:.1e}" for k, x in r["loss"].items())
         L.append(f"| {m} | {r['e']:.2e} | {r['omega_m']:.2e} | {loss} |")
     L += ["", "## Continuity at cell boundaries", "",
-          "| path | largest jump across a boundary (ulp of the value) | boundaries where w_m* falls or e rises by > 4 ulp |",
+          "| path | largest jump across a boundary (ulp of the value) | largest step against the model's direction "
+          "(w_m* falling or e rising; ulp) |",
           "|---|---|---|"]
     for k, (j, a) in jumps.items():
-        L.append(f"| {k} | {j:.1f} | {a} |")
+        L.append(f"| {k} | {j:.1f} | {a:.1f} |")
+    L += ["", "Before this release (first-kind Chebyshev nodes, no blend) the audit measured jumps of up to "
+          "5.3e-14 (curves, ~240 ulp) and 2.2e-10 (tables, ~1e6 ulp) relative."]
     L.append("")
     path.write_text("\n".join(L) + "\n")
 
