@@ -22,7 +22,7 @@ from collections import namedtuple
 import numba as nb
 import numpy as np
 
-from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool, check_eps_y, check_nu,
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
 from .energy import V_SWITCH, omega_m_sorted_kernel
 from .contact import W_SWITCH
@@ -372,6 +372,7 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
     """
     eps_y = real_scalar(eps_y, "eps_y")
     nu = real_scalar(nu, "nu")
+    extrapolate = check_bool(extrapolate, "extrapolate")
     check_eps_y(eps_y)
     check_nu(nu)
     if v_max is not None:

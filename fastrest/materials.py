@@ -13,6 +13,7 @@ implements the equations as printed, not the table values (see docs/model.md).
 """
 from dataclasses import dataclass
 import math
+import sys
 
 import numpy as np
 
@@ -140,6 +141,10 @@ class Impact:
     @classmethod
     def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
         """Two free spheres: R_eff = R1 R2/(R1+R2), reduced mass m1 m2/(m1+m2), V1 = relative speed."""
+        for name, m in (("sphere1", sphere1), ("sphere2", sphere2)):
+            if not isinstance(m, Material):
+                raise TypeError(f"{name} must be a fastrest.Material, got {type(m).__name__}")
+        R1, R2 = real_scalar(R1, "R1"), real_scalar(R2, "R2")
         check_finite_positive(R1, "R1", "(m)")
         check_finite_positive(R2, "R2", "(m)")
         m1 = _sphere_mass(sphere1, R1, mass1, "mass1")
@@ -150,9 +155,9 @@ class Impact:
 
     def _init(self, sphere, R1, other, R2, mass):
         if not isinstance(sphere, Material):
-            raise TypeError("sphere must be a fastrest.Material")
+            raise TypeError(f"sphere must be a fastrest.Material, got {type(sphere).__name__}")
         if other is not None and not isinstance(other, Material):
-            raise TypeError("flat must be a fastrest.Material or None (rigid flat)")
+            raise TypeError(f"flat must be a fastrest.Material or None (rigid flat), got {type(other).__name__}")
         check_finite_positive(R1, "R", "(m)")
         self.sphere, self.flat = sphere, other
         self.R_eff = R1 if R2 is None else effective_radius(R1, R2)
@@ -166,6 +171,25 @@ class Impact:
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
+        self._check_scales()
+
+    def _check_scales(self):
+        """Every scale the model divides by must be a finite, normal float: inputs far outside any
+        physical range (R = 1e300 m, E = 1e70 Pa) are refused here, not by an OverflowError or a
+        NaN later."""
+        try:
+            vals = self.critical_values()
+        except (OverflowError, ZeroDivisionError, ValueError) as exc:
+            vals = {"error": exc}
+        for k, v in vals.items():
+            if k == "nu":
+                continue
+            if not (isinstance(v, float) and math.isfinite(v) and v >= sys.float_info.min):
+                raise ValueError(
+                    f"this impact's {k} = {v!r} is not a finite, normal double: E, Sy, R and the mass "
+                    f"(SI units: Pa, Pa, m, kg) are too large or too small together (E_eff = "
+                    f"{self.E_eff!r} Pa, Sy = {self.yielding.Sy!r} Pa, R_eff = {self.R_eff!r} m, "
+                    f"mass = {self.mass!r} kg)")
 
     # --- material parameters of the normalised law ---
     @property
@@ -293,7 +317,11 @@ class Impact:
 
 def _sphere_mass(material, R, mass, name):
     if mass is not None:
-        return float(check_finite_positive(mass, name, "(kg)"))
+        return float(check_finite_positive(real_scalar(mass, name), name, "(kg)"))
     if material.rho is None:
         raise ValueError(f"{name} is required (kg) when the sphere's Material has no density rho")
-    return 4.0 / 3.0 * math.pi * R**3 * material.rho
+    m = 4.0 / 3.0 * math.pi * float(R) ** 3 * material.rho if float(R) < 1e100 else math.inf
+    if not (math.isfinite(m) and m >= sys.float_info.min):
+        raise ValueError(f"the sphere's mass (4/3) pi R^3 rho = {m!r} kg (R = {float(R)!r} m, rho = "
+                         f"{material.rho!r} kg/m^3) is not a finite, normal double; give mass= (kg)")
+    return m

@@ -50,6 +50,7 @@ import numpy as np
 from ._validation import (
     EPS_Y_VALIDATED,
     ValidityWarning,
+    check_bool,
     check_eps_y,
     check_finite_positive,
     check_nu,
@@ -301,7 +302,7 @@ def weir_tallon(V1, Sy, E_eff, rho, R1=None, R=None, *, cap=False):
     with np.errstate(divide="ignore"):
         e = (3.1 * (Sy / E_eff) ** 0.625 * ratio ** 0.375
              * (np.sqrt(E_eff / rho) / V1) ** 0.25)
-    if cap:
+    if check_bool(cap, "cap"):
         e = np.minimum(e, 1.0)
     return _out(e)
 
