@@ -141,7 +141,8 @@ def check_finite_result(out, what, inputs):
     for n, v in inputs:
         v = np.ravel(np.broadcast_to(np.asarray(v, dtype=np.float64), a.shape))[i] if np.size(v) else v
         parts.append(f"{n} = {float(v)!r}")
-    raise ValueError(f"{what} is not a finite number at {', '.join(parts)}: the inputs lie outside "
+    at = f" at {', '.join(parts)}" if parts else ""
+    raise ValueError(f"{what} is not a finite number{at}: the inputs lie outside "
                      "the range where the formula can be evaluated in double precision")
 
 

@@ -2,6 +2,7 @@
 import argparse
 import json
 import math
+import re
 import sys
 import time
 import warnings
@@ -57,7 +58,18 @@ def _cmd_e(args):
         # record the model's own warnings (validity, extrapolation) for the output; others pass through
         warnings.simplefilter("always", ValidityWarning)
         sols = {m: direct.solve(v1, imp.eps_y, imp.nu, m, extrapolate=args.extrapolate) for m in NAMES}
-        others = {n: np.atleast_1d(models.evaluate(n, imp, V)) for n in names}
+        others, model_notes = {}, []
+        for n in names:
+            # one value per speed: a comparison model undefined at a speed (Weir-Tallon at V = 0)
+            # gives null there, with the reason, instead of Infinity or losing the other rows
+            vals = []
+            for v in V:
+                try:
+                    vals.append(float(models.evaluate(n, imp, float(v))))
+                except ValueError as exc:
+                    vals.append(None)
+                    model_notes.append(f"{n} at V = {float(v):g} m/s: {exc}")
+            others[n] = vals
     rows = [{"V": float(a), "V1_star": float(b),
              "omega_m_star": float(np.atleast_1d(sols[NAMES[0]]["omega_m_star"])[i])} for i, (a, b) in enumerate(zip(V, v1))]
     for m in NAMES:
@@ -68,8 +80,8 @@ def _cmd_e(args):
             r["V2_" + m] = r["V"] * r["e_" + m]
     for n, vals in others.items():
         for r, x in zip(rows, vals):
-            r["e_" + n] = float(x)
-    notes = sorted({str(w.message) for w in caught if issubclass(w.category, ValidityWarning)})
+            r["e_" + n] = x
+    notes = sorted({str(w.message) for w in caught if issubclass(w.category, ValidityWarning)}) + model_notes
     for w in caught:
         if not issubclass(w.category, ValidityWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
@@ -77,7 +89,7 @@ def _cmd_e(args):
         out = {"critical": crit, "impacts": rows, "warnings": notes}
         if names:
             out["models"] = names
-        json.dump(out, sys.stdout, indent=2)
+        json.dump(out, sys.stdout, indent=2, allow_nan=False)  # strict JSON: no NaN/Infinity
         print()
         return 0
     if flat is None:
@@ -96,7 +108,8 @@ def _cmd_e(args):
     heads = "".join(f" {'e (' + MODELS[m].short + ')':>11s}" for m in NAMES)
     print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s}{heads}{extra_head}")
     for r in rows:
-        extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" for n in names)
+        extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" if r["e_" + n] is not None
+                        else f" {'n/a':>{widths[n]}s}" for n in names)
         cols = "".join(f" {r['e_' + m]:11.6f}" for m in NAMES)
         print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g}{cols}{extra}")
     if names:
@@ -143,6 +156,12 @@ def _cmd_build(args):
 def _cmd_info(args):
     from . import _hdf5, tables
 
+    if args.file is None:
+        try:
+            args.file = str(tables.default_table_path())
+        except FileNotFoundError as exc:
+            print(f"fastrest info: {exc}", file=sys.stderr)
+            return 1
     try:
         t = tables.read(args.file)
     except (_hdf5.TableFileError, OSError) as exc:
@@ -225,6 +244,9 @@ _GRID_HELP = {
 }
 
 
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
+
+
 def main(argv=None):
     from ._version import __version__
     from .tables import DEFAULT_GRID
@@ -275,7 +297,7 @@ def main(argv=None):
 
     pi = sub.add_parser("info", help="describe a table file; exit 1 if it is invalid",
                         description="Format, provenance, grid and measured error of a table file.")
-    pi.add_argument("file", help="table file (HDF5), e.g. tables/default.h5")
+    pi.add_argument("file", nargs="?", help="table file (HDF5); default: the shipped default table")
     pi.add_argument("--json", action="store_true", help="all root attributes as JSON")
     pi.set_defaults(func=_cmd_info)
 
@@ -288,6 +310,10 @@ def main(argv=None):
     pf.set_defaults(func=_cmd_figures)
 
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
+    for parser in (p, pe, pb, pi, pw, pf):
+        # argparse takes "-2e11" (exponent) or "-inf" for an option: read them as numbers, so a
+        # negative value gets the model's own message ("E must be finite and > 0")
+        parser._negative_number_matcher = _NEGATIVE_NUMBER
     args = p.parse_args(argv)
     try:
         return args.func(args)
