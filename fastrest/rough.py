@@ -37,6 +37,7 @@ import numba as nb
 import numpy as np
 
 from . import forward as fw
+from ._threads import run_parallel
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning, as_float_array,
                           check_bool, check_finite_positive, real_scalar, warn, warn_if_outside_validated)
 from .contact import W_SWITCH
@@ -784,14 +785,14 @@ class RoughSurface:
         # table, so results do not depend on what the surface computed before)
         hz = np.zeros((9, n))
         dummy = self._hertz_dummy(unloading)
-        _explicit_impacts(dummy, h, energy, energy**0.4, True, 0.0, False, hz)
+        run_parallel(_explicit_impacts, None, dummy, h, energy, energy**0.4, True, 0.0, False, hz)
         if np.any(hz[0] != _OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         x0 = hz[1].copy()
         # JG summits sink deeper than Hertz ones: start with twice the estimate
         return self._solve_growing_table(
-            lambda data, w_cap, at_limit, out: _explicit_impacts(data, h, energy, x0, False, w_cap,
-                                                                 at_limit, out),
+            lambda data, w_cap, at_limit, out: run_parallel(_explicit_impacts, None, data, h, energy, x0, False,
+                                                            w_cap, at_limit, out),
             9, 2.0 * float(x0.max()), energy, unloading, extrapolate, M)
 
     def _solve_growing_table(self, run, rows, w_guess, energy, unloading, extrapolate, M):
@@ -819,7 +820,11 @@ class RoughSurface:
         dummy = self._hertz_dummy(unloading)
         s_start = 0.0 if g.kind == 0 else 0.5 * (g.s_lo + g.s_hi)
         hz = np.zeros((10, n))
-        run = _gw_impacts if n >= 4 else _gw_impacts_serial
+        if n >= 4:
+            def run(*args):
+                return run_parallel(_gw_impacts, _gw_impacts_serial, *args)
+        else:
+            run = _gw_impacts_serial
         self._check_gw_energy(energy, M)
         # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
         # (a/R = 1) means the impact itself is past it

@@ -28,13 +28,14 @@ import numba as nb
 import numpy as np
 
 from . import _hdf5
+from ._threads import run_parallel
 from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, EDGE_TOL, check_count, check_nu,
                           check_eps_y, real_scalar,
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
 from .critical import c_of_nu
-from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
+from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, _fast_scalar, hertz_rows
 from .direct import impact_array
 from .limits import raise_out_of_range, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
@@ -299,12 +300,12 @@ def generate(grid=None, progress=None):
     w_star = np.empty((eps_w.size, nus.size, omega.size))
     for b, i in jobs:
         if b is None:  # W* = 1 - F at eps_w[i]
-            _generate_row(np.full(nus.size, eps_w[i]), nus, nodes[:0].ravel(), omega,
-                          np.empty((len(QUANTITIES), nus.size, 0)), w_star[i])
+            run_parallel(_generate_row, None, np.full(nus.size, eps_w[i]), nus, nodes[:0].ravel(), omega,
+                         np.empty((len(QUANTITIES), nus.size, 0)), w_star[i])
             continue
         flat = nodes[b["cell0"]:b["cell1"]].ravel()
         out = np.empty((len(QUANTITIES), nus.size, flat.size))
-        _generate_row(b["eps_y"][i], nus, flat, omega[:0], out, np.empty((nus.size, 0)))
+        run_parallel(_generate_row, None, b["eps_y"][i], nus, flat, omega[:0], out, np.empty((nus.size, 0)))
         b["values"][:, i] = out.reshape(out.shape[:2] + (-1, DEGREE + 1))
     v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
     return dict(grid=g, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=layout["base_fine"],
@@ -375,13 +376,21 @@ def table_value(tab, q, v, eps_y, nu):
     """
     if not (q >= 0 and q < tab.n_quantities):
         return np.nan
-    return _interpolate(tab, q, v, eps_y, nu, True)
+    # float32 and integer inputs, as the Python API takes them
+    return _interpolate(tab, q, np.float64(v), np.float64(eps_y), np.float64(nu), True)
 
 
 @nb.njit(cache=True, inline="always")
 def _interpolate(tab, q, v, eps_y, nu, check_limit):
-    if not (eps_y >= tab.eps_lo and eps_y <= tab.eps_hi and nu >= tab.nu_lo and nu <= tab.nu_hi):
+    # a material a few ulp outside an edge (0.001 + 0.0005 * 18 = 0.010000000000000002) is at
+    # the edge: clamped there, never extrapolated further
+    e_lo, e_hi = tab.eps_lo, tab.eps_hi
+    n_lo, n_hi = tab.nu_lo, tab.nu_hi
+    if not (eps_y >= e_lo * (1.0 - EDGE_TOL) and eps_y <= e_hi * (1.0 + EDGE_TOL)
+            and nu >= n_lo * (1.0 - EDGE_TOL) and nu <= n_hi * (1.0 + EDGE_TOL)):
         return np.nan
+    eps_y = min(max(eps_y, e_lo), e_hi)
+    nu = min(max(nu, n_lo), n_hi)
     if not v > V_SWITCH:
         if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
             r = cell_polynomial(tab.hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
@@ -525,6 +534,12 @@ class Table:
         self.attrs = attrs or {}
         self.path = path
 
+    # the compiled entry point does not pickle: dropped, rebuilt on the first scalar call
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        state["_entry"] = None
+        return state
+
     def __repr__(self):
         g = self.grid
         return (f"Table(eps_y=[{g['eps_y_min']}, {g['eps_y_max']}] x {g['n_eps_y']}, "
@@ -535,8 +550,10 @@ class Table:
         """One point from Python floats: the kernel's compiled entry point (~1 us instead of ~30 us
         through the array machinery); anything unusual (NaN result, outside the validated range,
         which warns) goes the checked array way."""
-        if (type(v1_star) is float and type(eps_y) is float and type(nu) is float
-                and EPS_Y_VALIDATED[0] <= eps_y <= EPS_Y_VALIDATED[1] and NU_VALIDATED[0] <= nu <= NU_VALIDATED[1]):
+        v, e, n = _fast_scalar(v1_star), _fast_scalar(eps_y), _fast_scalar(nu)
+        if (v is not None and e is not None and n is not None
+                and EPS_Y_VALIDATED[0] <= e <= EPS_Y_VALIDATED[1] and NU_VALIDATED[0] <= n <= NU_VALIDATED[1]):
+            v1_star, eps_y, nu = v, e, n
             if self._entry is None:
                 self._entry = _entry_point(table_value, (nb.typeof(self.data), nb.int64, nb.float64,
                                                           nb.float64, nb.float64))
@@ -550,8 +567,10 @@ class Table:
         out = np.empty(v.size)
         if v.size == 0:
             return shaped(out, shape)
-        kernel = _table_array_parallel if v.size >= PARALLEL_MIN_POINTS else _table_array
-        kernel(self.data, q, v, e, n, out)
+        if v.size >= PARALLEL_MIN_POINTS:
+            run_parallel(_table_array_parallel, _table_array, self.data, q, v, e, n, out)
+        else:
+            _table_array(self.data, q, v, e, n, out)
         bad = np.isnan(out)
         if bad.any():
             self._raise(v[bad], e[bad], n[bad])
