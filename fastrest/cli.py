@@ -192,16 +192,58 @@ def _cmd_info(args):
 
 
 def _cmd_warmup(args):
-    """Compile (or load from Numba's cache) every kernel once."""
+    """Compile (or load from Numba's cache) every entry point once, timing each."""
     import fastrest
+    from . import _threads, rough, tables
+    from .jit import e_curve, e_scene, e_table
+
+    def step(name, fn):
+        t = time.perf_counter()
+        fn()
+        print(f"  {name:<40s} {time.perf_counter() - t:7.2f} s")
 
     t0 = time.perf_counter()
-    fastrest.direct.e_star([2.0, 5.0], 0.005, 0.33)
-    c = fastrest.curve(0.005, 0.33, v_max=10.0)
-    c.e(5.0), c.e(np.array([5.0])), c.loss(np.array([5.0])), c.omega_m(np.array([5.0]))
-    fastrest.e_star([5.0], 0.005, 0.33)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        big = np.full(tables.PARALLEL_MIN_POINTS, 5.0)
+        steel = fastrest.Material(2e11, 0.3, 1e9)
+        ip = fastrest.Impact(steel, 1e-4, mass=1.0)
+        c = fastrest.curve(0.005, 0.33, v_max=10.0)
+        s = fastrest.scene([(0.005, 0.33), (0.003, 0.3)], v_max=10.0)
+        t = fastrest.load_table()
+        step("direct solver (scalar, array)", lambda: (fastrest.direct.e_star(5.0, 0.005, 0.33),
+                                                       fastrest.direct.e_star([2.0, 5.0], 0.005, 0.33)))
+        step("curve (scalar, arrays)", lambda: (c.e(5.0), c.e(np.array([5.0])), c.loss(np.array([5.0])),
+                                                c.omega_m(np.array([5.0]))))
+        step("scene", lambda: (s.e(np.array([5.0]), np.array([1])), s.e(5.0, 1)))
+        step("table: scalar e_star", lambda: (fastrest.e_star(5.0, 0.005, 0.33), t.loss_star(5.0, 0.005, 0.33)))
+        step("table: batch kernels (serial, parallel)",
+             lambda: (fastrest.e_star([5.0], 0.005, 0.33),
+                      _threads.run_parallel(tables._table_array_parallel, None, t.data, 1, big, big * 0.001,
+                                            big * 0.066, np.empty(big.size))))
+        step("jit functions (curve, scene, table)", lambda: _warm_jit(c, s, t, e_curve, e_scene, e_table))
+        step("rough surfaces (explicit, statistical)",
+             lambda: (rough.RoughSurface(steel, 1e-4, heights=[0.0, 1e-7]).impact(1e-3, 1e-3),
+                      rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
+                      .impact([1e-4, 2e-4, 5e-4, 1e-3], 1e-3),
+                      rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
+                      .impact(1e-3, 1e-3)))
+        step("contact law (force, impact)", lambda: (fastrest.contact_law(0.005, 0.33).force([0.5, 2.0, 1.0]),
+                                                     fastrest.contact_law(0.005, 0.33).impact(5.0, 200)))
+        step("comparison models", lambda: [fastrest.models.MODELS[m](5.0, 0.005, 0.33) for m in fastrest.models.MODELS])
     print(f"fastrest kernels ready in {time.perf_counter() - t0:.2f} s")
     return 0
+
+
+def _warm_jit(c, s, t, e_curve, e_scene, e_table):
+    """The fastrest.jit functions compile inside the caller's function; warm their callees."""
+    import numba as nb
+
+    @nb.njit
+    def run(cd, sd, td):
+        return e_curve(cd, 5.0) + e_scene(sd, 1, 5.0) + e_table(td, 5.0, 0.005, 0.33, 0)
+
+    return run(c.data, s.data, t.data)
 
 
 def _cmd_figures(args):
@@ -301,7 +343,7 @@ def main(argv=None):
     pi.add_argument("--json", action="store_true", help="all root attributes as JSON")
     pi.set_defaults(func=_cmd_info)
 
-    pw = sub.add_parser("warmup", help="compile the Numba kernels into the cache")
+    pw = sub.add_parser("warmup", help="compile every Numba kernel into the cache (run once after install)")
     pw.set_defaults(func=_cmd_warmup)
 
     pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)")
