@@ -576,5 +576,11 @@ def scene(materials, unloading="jcg", v_max=None, extrapolate=False):
     for k, m in enumerate(materials):
         if np.ndim(m) != 1 or len(m) != 2:
             raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {m!r}")
-    vm = [None] * len(materials) if v_max is None else np.broadcast_to(v_max, (len(materials),)).tolist()
+    if v_max is None:
+        vm = [None] * len(materials)
+    else:
+        v = as_float_array(v_max, "v_max")
+        if not (v.ndim == 0 or v.shape == (len(materials),)):
+            raise ValueError(f"v_max must be one number or one per material ({len(materials)}); got shape {v.shape}")
+        vm = np.broadcast_to(v, (len(materials),)).tolist()
     return Scene([curve(e, n, unloading, v, extrapolate) for (e, n), v in zip(materials, vm)])

@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from ._validation import check_finite_positive, check_nu, real_scalar
+from ._validation import as_float_array, check_finite_positive, check_nu, real_scalar
 from .critical import (c_of_nu, critical_area, critical_energy, critical_force, critical_interference,
                        critical_velocity, effective_mass, effective_modulus, effective_radius)
 
@@ -147,8 +147,8 @@ class Impact:
         R1, R2 = real_scalar(R1, "R1"), real_scalar(R2, "R2")
         check_finite_positive(R1, "R1", "(m)")
         check_finite_positive(R2, "R2", "(m)")
-        m1 = _sphere_mass(sphere1, R1, mass1, "mass1")
-        m2 = _sphere_mass(sphere2, R2, mass2, "mass2")
+        m1 = _sphere_mass(sphere1, R1, mass1, "mass1", "R1")
+        m2 = _sphere_mass(sphere2, R2, mass2, "mass2", "R2")
         self = cls.__new__(cls)
         self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), effective_mass(m1, m2))
         return self
@@ -291,8 +291,8 @@ class Impact:
 
     def rebound_velocity(self, V1, unloading="jcg", extrapolate=False):
         """Rebound speed V2 (m/s) for impact speed V1 (m/s), eq (38)."""
-        V1a = np.asarray(V1, dtype=np.float64)
-        out = self.e(V1, unloading=unloading, extrapolate=extrapolate) * V1a
+        out = self.e(V1, unloading=unloading, extrapolate=extrapolate)  # validates V1
+        out = out * as_float_array(V1, "V1")
         return float(out) if np.ndim(out) == 0 else out
 
     def contact_law(self, unloading="jcg", extrapolate=False):
@@ -315,13 +315,13 @@ class Impact:
         return w_res * self.omega_c, r_ratio * self.R_eff
 
 
-def _sphere_mass(material, R, mass, name):
+def _sphere_mass(material, R, mass, name, R_name="R"):
     if mass is not None:
         return float(check_finite_positive(real_scalar(mass, name), name, "(kg)"))
     if material.rho is None:
         raise ValueError(f"{name} is required (kg) when the sphere's Material has no density rho")
     m = 4.0 / 3.0 * math.pi * float(R) ** 3 * material.rho if float(R) < 1e100 else math.inf
     if not (math.isfinite(m) and m >= sys.float_info.min):
-        raise ValueError(f"the sphere's mass (4/3) pi R^3 rho = {m!r} kg (R = {float(R)!r} m, rho = "
+        raise ValueError(f"the sphere's mass (4/3) pi R^3 rho = {m!r} kg ({R_name} = {float(R)!r} m, rho = "
                          f"{material.rho!r} kg/m^3) is not a finite, normal double; give mass= (kg)")
     return m

@@ -458,9 +458,9 @@ def gaussian_summits(n, sigma, seed=None):
     seed : int or numpy.random.Generator, optional
         Seed of ``numpy.random.default_rng``; the same seed gives the same heights.
     """
-    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
-        raise ValueError(f"n (number of summits) must be an integer >= 1; got {n!r}")
-    sigma = float(check_finite_positive(sigma, "sigma", "(m, standard deviation of summit heights)"))
+    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= 10**9:
+        raise ValueError(f"n (number of summits) must be an integer in [1, 1e9]; got {n!r}")
+    sigma = float(check_finite_positive(real_scalar(sigma, "sigma"), "sigma", "(m, standard deviation of summit heights)"))
     return np.random.default_rng(seed).normal(0.0, sigma, int(n))
 
 
@@ -601,8 +601,11 @@ class RoughSurface:
         if not isinstance(material, Material):
             raise TypeError("material must be a fastrest.Material")
         self.material = material
-        self.R_a = float(check_finite_positive(R_a, "R_a", "(m, summit radius)"))
-        self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
+        self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
+        try:
+            self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
+        except ValueError as exc:
+            raise ValueError(f"R_a = {self.R_a!r} m: {exc}") from None
         if (heights is None) == (gw is None):
             raise ValueError("give exactly one of heights= (explicit summits) and gw= (statistical)")
         ip = self.impact_params
@@ -764,17 +767,19 @@ class RoughSurface:
         return RoughImpact(V1=shaped(flat), M=M, unloading=unloading, kind=self.kind,
                            **{k: shaped(a) for k, a in out.items()})
 
-    def _grow_or_raise(self, unloading, need, extrapolate, v1_bad):
+    def _grow_or_raise(self, unloading, need, extrapolate, v1_bad, M):
         """Grow the forward table to cover w* = need, or raise if the model's range ends first."""
         lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
         data = self._tables.get(unloading_code(unloading))
         if data is not None and data.w_max >= lim:
             what = interference_limit_message(max(need, lim * (1 + 1e-15)), self.eps_y, self.nu, extrapolate)
             if self.kind == "statistical":
-                what += (f". The height distribution is integrated until its tail is negligible "
+                what += (f". The surface has N = eta A_n = {self.n_summits:.6g} summits; its height distribution "
+                         f"(sigma = {self.sigma!r} m) is integrated until its tail is negligible "
                          f"(here up to w* = {need:.4g}); a pdf with bounded support "
                          "(GreenwoodWilliamson(pdf=..., support=...)) truncates it")
-            raise ValueError(f"the impact at V1 = {v1_bad!r} m/s drives summits to a w* that {what}")
+            raise ValueError(f"the impact at V1 = {v1_bad!r} m/s (M = {M!r} kg) drives summits to a w* "
+                             f"that {what}")
         return self.forward(unloading, min(lim, max(1.25 * need, 2.0 * (data.w_max if data else 0.0))),
                             extrapolate)
 
@@ -809,7 +814,7 @@ class RoughSurface:
                 break
             k = int(np.flatnonzero(need)[0])
             data = self._grow_or_raise(unloading, float(out[2, need].max()), extrapolate,
-                                       float(np.sqrt(2.0 * self.U_c * energy[k] / M)))
+                                       float(np.sqrt(2.0 * self.U_c * energy[k] / M)), M)
         if np.any(out[0] != _OK):
             raise RuntimeError("rough-surface solver did not converge (please report)")
         return out
@@ -832,8 +837,11 @@ class RoughSurface:
         run(dummy, g, energy, np.full(n, s_start), True, HERTZ_CAP * w_end, True, hz)
         if np.any(hz[0] == _NEEDS_TABLE):
             k = int(np.flatnonzero(hz[0] == _NEEDS_TABLE)[0])
-            raise ValueError(f"the impact at V1 = {float(np.sqrt(2.0 * self.U_c * energy[k] / M))!r} m/s drives "
-                             f"summits to a w* that {interference_limit_message(w_end * 1.5, self.eps_y, self.nu, True)}")
+            raise ValueError(f"the impact at V1 = {float(np.sqrt(2.0 * self.U_c * energy[k] / M))!r} m/s (M = {M!r} "
+                             f"kg) drives summits to a w* that {interference_limit_message(w_end * 1.5, self.eps_y, self.nu, True)}"
+                             f". The height distribution (sigma = {self.sigma!r} m) is integrated until its tail "
+                             "is negligible; a pdf with bounded support (GreenwoodWilliamson(pdf=..., "
+                             "support=...)) truncates it")
         if np.any(hz[0] != _OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         s0 = hz[1].copy()
@@ -1073,13 +1081,25 @@ def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
     from .unloading import restitution_kernel
 
     model = unloading_code(unloading)
-    ip = Impact(material, float(R_a), mass=float(M))
+    if not isinstance(material, Material):
+        raise TypeError(f"material must be a fastrest.Material, got {type(material).__name__}")
+    R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
+    M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
+    V1 = float(check_finite_positive(real_scalar(V1, "V1"), "V1", "(m/s)"))
+    if not as_float_array(heights, "heights").size:
+        raise ValueError("heights is empty: a surface needs at least one summit")
+    try:
+        ip = Impact(material, R_a, mass=M)
+    except ValueError as exc:
+        raise ValueError(f"R_a = {R_a!r} m, M = {M!r} kg: {exc}") from None
     eps, nu, wc = float(ip.eps_y), float(ip.nu), ip.omega_c
     z = np.asarray(heights, dtype=np.float64).ravel()
     z_top = float(z.max())
     h = (z - z_top) / wc
     v1_star = float(V1) / ip.V_c
-    energy = v1_star**2
+    energy = v1_star**2 if v1_star < 1e150 else math.inf
+    if not (math.isfinite(energy) and energy >= sys.float_info.min):
+        raise ValueError(f"V1 = {V1!r} m/s with M = {M!r} kg: (V1/V_c)^2 = {energy!r} must be a finite, normal double")
 
     def excess(x):
         return sum(f_star_kernel(hi + x, eps, nu) for hi in h if hi + x > 0.0) - energy
@@ -1089,7 +1109,8 @@ def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
     x_hi = energy**0.4
     while excess(x_hi) < 0.0:
         if x_hi >= OMEGA_M_STAR_MAX:
-            raise ValueError(f"V1 = {V1!r} m/s drives summits past w* = {OMEGA_M_STAR_MAX:g}")
+            raise ValueError(f"V1 = {V1!r} m/s (M = {M!r} kg, R_a = {R_a!r} m) drives summits past "
+                             f"w* = {OMEGA_M_STAR_MAX:g}")
         x_hi = min(2.0 * x_hi, OMEGA_M_STAR_MAX)
     x = brentq(excess, 0.0, x_hi, xtol=1e-300, rtol=1e-15, maxiter=1000)
     f_sum = p_sum = l_sum = 0.0
