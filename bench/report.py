@@ -346,6 +346,7 @@ def results_md(R):
       "cells; it inherits the table's error. Errors against the direct solver at random V1* of that "
       "material plus hard cases.\n")
     a("### First use in a fresh process\n")
+    a("Warm cache: after `fastrest warmup` (run once before these runs; nothing else warms the cache).\n")
     rows = []
     for name, r in fr["first_use"].items():
         if name.startswith("_"):

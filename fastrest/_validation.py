@@ -3,6 +3,8 @@
 The Python layer validates and raises; the jitted kernels underneath return NaN for points outside
 the model's definition, so batch loops never raise.
 """
+import math
+import numbers
 import os
 import sys
 import warnings
@@ -14,6 +16,9 @@ EPS_Y_VALIDATED = (0.0005, 0.01)
 NU_VALIDATED = (0.2, 0.45)
 #: Largest normalised maximum interference the paper computed (JGM 2010, section 3.3).
 OMEGA_M_STAR_MAX = 425.0
+#: Relative slack at the edges of a range of material parameters: last-ulp rounding of an edge
+#: value (0.001 + 0.0005 * 18 = 0.010000000000000002) is at the edge, not outside it.
+EDGE_TOL = 4.0 * 2.0**-52
 #: JG (2005) switches from Hertz to its elasto-plastic fit at w* = 1.9 (eqs 8-9).
 OMEGA_STAR_SWITCH = 1.9
 
@@ -31,34 +36,50 @@ _NOT_REAL = (str, bytes, bytearray, memoryview, bool, np.bool_)
 
 
 def _any_not_real(items):
-    return any(el is None or isinstance(el, _NOT_REAL) for el in items)
+    # nested lists too: NumPy would read [[1.0, True]] as [[1.0, 1.0]]
+    return any(el is None or isinstance(el, _NOT_REAL)
+               or (isinstance(el, (list, tuple)) and _any_not_real(el)) for el in items)
 
 
 def _type_error(name, x):
-    return TypeError(f"{name} must be a real number or array of real numbers, got {x!r} "
+    return TypeError(f"{name} must be a real number or array of real numbers, got {_short(x)} "
                      f"({type(x).__name__})")
+
+
+def _short(x):
+    r = repr(x)
+    return r if len(r) <= 80 else r[:77] + "..."
 
 
 def as_float_array(x, name):
     """Return ``x`` as a float64 ndarray.
 
     Raises TypeError naming ``name`` for anything that is not real-valued: strings (NumPy would
-    parse ``"5"``), booleans, None (NumPy would make it NaN), complex numbers, datetimes.
+    parse ``"5"``), booleans, None (NumPy would make it NaN), complex numbers, datetimes, masked
+    arrays (NumPy would drop the mask); ValueError for integers beyond the float range.
     """
     if x is None or isinstance(x, _NOT_REAL):
         raise _type_error(name, x)
+    if isinstance(x, np.ma.MaskedArray):
+        raise TypeError(f"{name}: masked arrays are not accepted (the mask would be ignored); pass "
+                        "x.compressed() or x.filled(value)")
     if isinstance(x, (list, tuple)) and _any_not_real(x):
         raise _type_error(name, x)  # NumPy would read [1.0, True] as [1.0, 1.0]
     try:
         a = np.asarray(x)
     except (TypeError, ValueError) as exc:  # e.g. ragged nested lists
         raise _type_error(name, x) from exc
+    except OverflowError as exc:
+        raise ValueError(f"{name} = {_short(x)} is beyond the range of a float64") from exc
     kind = a.dtype.kind
     if kind == "O":
-        if _any_not_real(a.flat):
+        if _any_not_real(a.flat) or not all(isinstance(el, numbers.Real) for el in a.flat):
             raise _type_error(name, x)
         try:
             return a.astype(np.float64)
+        except OverflowError as exc:  # a Python int beyond the float range
+            raise ValueError(f"{name} = {_short(x)} is beyond the range of a float64 "
+                             f"(|x| < {sys.float_info.max:.4g})") from exc
         except (TypeError, ValueError) as exc:
             raise _type_error(name, x) from exc
     if kind not in "iuf":
@@ -72,6 +93,57 @@ def real_scalar(x, name):
     if a.ndim != 0:
         raise TypeError(f"{name} must be a single real number, got an array of shape {a.shape}")
     return float(a)
+
+
+def check_bool(x, name):
+    """``x`` as a Python bool: only ``True``/``False`` (or NumPy booleans) are accepted.
+
+    A flag read by truthiness would take ``"False"``, ``"no"``, 2.5 or NaN as True.
+    """
+    if isinstance(x, (bool, np.bool_)):
+        return bool(x)
+    raise TypeError(f"{name} must be True or False, got {_short(x)} ({type(x).__name__})")
+
+
+def check_count(x, name, lo, hi):
+    """A whole number ``lo <= x <= hi`` (an int); TypeError for non-numbers, ValueError otherwise."""
+    if isinstance(x, numbers.Integral) and not isinstance(x, (bool, np.bool_)):
+        v = int(x)
+    else:
+        f = real_scalar(x, name)
+        if not (math.isfinite(f) and f.is_integer()):
+            raise ValueError(f"{name} must be a whole number in [{lo}, {hi}]; got {_short(x)}")
+        v = int(f)
+    if not lo <= v <= hi:
+        raise ValueError(f"{name} must be a whole number in [{lo}, {hi}]; got {_short(x)}")
+    return v
+
+
+def broadcast_named(*named):
+    """np.broadcast_shapes of (array, name) pairs, with a ValueError naming the parameters."""
+    try:
+        return np.broadcast_shapes(*(np.shape(a) for a, _ in named))
+    except ValueError:
+        shapes = ", ".join(f"{n} {np.shape(a)}" for a, n in named)
+        raise ValueError(f"the shapes of {shapes} do not broadcast together (each must be a "
+                         "scalar, or arrays of equal or broadcastable shapes)") from None
+
+
+def check_finite_result(out, what, inputs):
+    """ValueError unless every element of ``out`` is finite: a formula that overflows or
+    underflows double precision says so instead of returning inf or NaN. ``inputs``: (name, value)
+    pairs reported in the message."""
+    a = np.asarray(out)
+    if np.all(np.isfinite(a)):
+        return out
+    i = int(np.flatnonzero(~np.isfinite(np.ravel(a)))[0])
+    parts = []
+    for n, v in inputs:
+        v = np.ravel(np.broadcast_to(np.asarray(v, dtype=np.float64), a.shape))[i] if np.size(v) else v
+        parts.append(f"{n} = {float(v)!r}")
+    at = f" at {', '.join(parts)}" if parts else ""
+    raise ValueError(f"{what} is not a finite number{at}: the inputs lie outside "
+                     "the range where the formula can be evaluated in double precision")
 
 
 def check_finite_positive(x, name, unit):
@@ -130,9 +202,9 @@ def warn_if_outside_validated(eps_y, nu):
     eps_y = np.asarray(eps_y)
     nu = np.asarray(nu)
     lo, hi = EPS_Y_VALIDATED
-    out_e = np.any((eps_y < lo) | (eps_y > hi))
+    out_e = np.any((eps_y < lo * (1.0 - EDGE_TOL)) | (eps_y > hi * (1.0 + EDGE_TOL)))
     lo_n, hi_n = NU_VALIDATED
-    out_n = np.any((nu < lo_n) | (nu > hi_n))
+    out_n = np.any((nu < lo_n * (1.0 - EDGE_TOL)) | (nu > hi_n * (1.0 + EDGE_TOL)))
     if out_e or out_n:
         parts = []
         if out_e:

@@ -4,6 +4,7 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
 import time
 import warnings
@@ -59,7 +60,18 @@ def _cmd_e(args):
         # record the model's own warnings (validity, extrapolation) for the output; others pass through
         warnings.simplefilter("always", ValidityWarning)
         sols = {m: direct.solve(v1, imp.eps_y, imp.nu, m, extrapolate=args.extrapolate) for m in NAMES}
-        others = {n: np.atleast_1d(models.evaluate(n, imp, V)) for n in names}
+        others, model_notes = {}, []
+        for n in names:
+            # one value per speed: a comparison model undefined at a speed (Weir-Tallon at V = 0)
+            # gives null there, with the reason, instead of Infinity or losing the other rows
+            vals = []
+            for v in V:
+                try:
+                    vals.append(float(models.evaluate(n, imp, float(v))))
+                except ValueError as exc:
+                    vals.append(None)
+                    model_notes.append(f"{n} at V = {float(v):g} m/s: {exc}")
+            others[n] = vals
     rows = [{"V": float(a), "V1_star": float(b),
              "omega_m_star": float(np.atleast_1d(sols[NAMES[0]]["omega_m_star"])[i])} for i, (a, b) in enumerate(zip(V, v1))]
     for m in NAMES:
@@ -70,8 +82,8 @@ def _cmd_e(args):
             r["V2_" + m] = r["V"] * r["e_" + m]
     for n, vals in others.items():
         for r, x in zip(rows, vals):
-            r["e_" + n] = float(x)
-    notes = sorted({str(w.message) for w in caught if issubclass(w.category, ValidityWarning)})
+            r["e_" + n] = x
+    notes = sorted({str(w.message) for w in caught if issubclass(w.category, ValidityWarning)}) + model_notes
     for w in caught:
         if not issubclass(w.category, ValidityWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
@@ -79,7 +91,7 @@ def _cmd_e(args):
         out = {"critical": crit, "impacts": rows, "warnings": notes}
         if names:
             out["models"] = names
-        json.dump(out, sys.stdout, indent=2)
+        json.dump(out, sys.stdout, indent=2, allow_nan=False)  # strict JSON: no NaN/Infinity
         print()
         return 0
     if flat is None:
@@ -98,7 +110,8 @@ def _cmd_e(args):
     heads = "".join(f" {'e (' + MODELS[m].short + ')':>11s}" for m in NAMES)
     print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s}{heads}{extra_head}")
     for r in rows:
-        extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" for n in names)
+        extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" if r["e_" + n] is not None
+                        else f" {'n/a':>{widths[n]}s}" for n in names)
         cols = "".join(f" {r['e_' + m]:11.6f}" for m in NAMES)
         print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g}{cols}{extra}")
     if names:
@@ -165,6 +178,12 @@ def _print_errors(errors):
 def _cmd_info(args):
     from . import _hdf5, tables
 
+    if args.file is None:
+        try:
+            args.file = str(tables.default_table_path())
+        except FileNotFoundError as exc:
+            print(f"fastrest info: {exc}", file=sys.stderr)
+            return 1
     try:
         t = tables.read(args.file)
     except (_hdf5.TableFileError, OSError) as exc:
@@ -193,16 +212,58 @@ def _cmd_info(args):
 
 
 def _cmd_warmup(args):
-    """Compile (or load from Numba's cache) every kernel once."""
+    """Compile (or load from Numba's cache) every entry point once, timing each."""
     import fastrest
+    from . import _threads, rough, tables
+    from .jit import e_curve, e_scene, e_table
+
+    def step(name, fn):
+        t = time.perf_counter()
+        fn()
+        print(f"  {name:<40s} {time.perf_counter() - t:7.2f} s")
 
     t0 = time.perf_counter()
-    fastrest.direct.e_star([2.0, 5.0], 0.005, 0.33)
-    c = fastrest.curve(0.005, 0.33, v_max=10.0)
-    c.e(5.0), c.e(np.array([5.0])), c.loss(np.array([5.0])), c.omega_m(np.array([5.0]))
-    fastrest.e_star([5.0], 0.005, 0.33)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        big = np.full(tables.PARALLEL_MIN_POINTS, 5.0)
+        steel = fastrest.Material(2e11, 0.3, 1e9)
+        ip = fastrest.Impact(steel, 1e-4, mass=1.0)
+        c = fastrest.curve(0.005, 0.33, v_max=10.0)
+        s = fastrest.scene([(0.005, 0.33), (0.003, 0.3)], v_max=10.0)
+        t = fastrest.load_table()
+        step("direct solver (scalar, array)", lambda: (fastrest.direct.e_star(5.0, 0.005, 0.33),
+                                                       fastrest.direct.e_star([2.0, 5.0], 0.005, 0.33)))
+        step("curve (scalar, arrays)", lambda: (c.e(5.0), c.e(np.array([5.0])), c.loss(np.array([5.0])),
+                                                c.omega_m(np.array([5.0]))))
+        step("scene", lambda: (s.e(np.array([5.0]), np.array([1])), s.e(5.0, 1)))
+        step("table: scalar e_star", lambda: (fastrest.e_star(5.0, 0.005, 0.33), t.loss_star(5.0, 0.005, 0.33)))
+        step("table: batch kernels (serial, parallel)",
+             lambda: (fastrest.e_star([5.0], 0.005, 0.33),
+                      _threads.run_parallel(tables._table_array_parallel, None, t.data, 1, big, big * 0.001,
+                                            big * 0.066, np.empty(big.size))))
+        step("jit functions (curve, scene, table)", lambda: _warm_jit(c, s, t, e_curve, e_scene, e_table))
+        step("rough surfaces (explicit, statistical)",
+             lambda: (rough.RoughSurface(steel, 1e-4, heights=[0.0, 1e-7]).impact(1e-3, 1e-3),
+                      rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
+                      .impact([1e-4, 2e-4, 5e-4, 1e-3], 1e-3),
+                      rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
+                      .impact(1e-3, 1e-3)))
+        step("contact law (force, impact)", lambda: (fastrest.contact_law(0.005, 0.33).force([0.5, 2.0, 1.0]),
+                                                     fastrest.contact_law(0.005, 0.33).impact(5.0, 200)))
+        step("comparison models", lambda: [fastrest.models.MODELS[m](5.0, 0.005, 0.33) for m in fastrest.models.MODELS])
     print(f"fastrest kernels ready in {time.perf_counter() - t0:.2f} s")
     return 0
+
+
+def _warm_jit(c, s, t, e_curve, e_scene, e_table):
+    """The fastrest.jit functions compile inside the caller's function; warm their callees."""
+    import numba as nb
+
+    @nb.njit
+    def run(cd, sd, td):
+        return e_curve(cd, 5.0) + e_scene(sd, 1, 5.0) + e_table(td, 5.0, 0.005, 0.33, 0)
+
+    return run(c.data, s.data, t.data)
 
 
 def _cmd_figures(args):
@@ -243,6 +304,9 @@ _GRID_HELP = {
     "fine_v1_star_max": "V1* (a power of two) where the finer cells end",
     "n_eps_y_energy": "nodes in eps_y of the stored W*(w*) grid",
 }
+
+
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
 
 def main(argv=None):
@@ -298,11 +362,11 @@ def main(argv=None):
 
     pi = sub.add_parser("info", help="describe a table file; exit 1 if it is invalid",
                         description="Format, provenance, grid and measured error of a table file.")
-    pi.add_argument("file", help="table file (HDF5), e.g. tables/default.h5")
+    pi.add_argument("file", nargs="?", help="table file (HDF5); default: the shipped default table")
     pi.add_argument("--json", action="store_true", help="all root attributes as JSON")
     pi.set_defaults(func=_cmd_info)
 
-    pw = sub.add_parser("warmup", help="compile the Numba kernels into the cache")
+    pw = sub.add_parser("warmup", help="compile every Numba kernel into the cache (run once after install)")
     pw.set_defaults(func=_cmd_warmup)
 
     pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)")
@@ -315,6 +379,10 @@ def main(argv=None):
     add_export_parser(sub)
 
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
+    for parser in (p, pe, pb, pi, pw, pf):
+        # argparse takes "-2e11" (exponent) or "-inf" for an option: read them as numbers, so a
+        # negative value gets the model's own message ("E must be finite and > 0")
+        parser._negative_number_matcher = _NEGATIVE_NUMBER
     args = p.parse_args(argv)
     try:
         code = args.func(args)

@@ -19,7 +19,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ._validation import OMEGA_STAR_SWITCH, check_eps_y, check_nu, as_float_array
+from ._validation import OMEGA_STAR_SWITCH, as_float_array, broadcast_named, check_eps_y, check_finite_result, check_nu
 from .critical import c_of_nu
 
 W_SWITCH = OMEGA_STAR_SWITCH
@@ -112,7 +112,7 @@ def _a_star_array(w, eps_y, nu, out):
 def broadcast_inputs(*named):
     """Broadcast (array, name) pairs to flat contiguous float64 arrays; return (flat arrays, shape)."""
     arrays = [as_float_array(a, n) for a, n in named]
-    shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    shape = broadcast_named(*zip(arrays, (n for _, n in named)))
     # broadcast_to + copy, not broadcast_arrays: its views warn (FutureWarning) when Numba reads
     # their writeable flag
     return [np.ascontiguousarray(a).ravel() if a.shape == shape else np.broadcast_to(a, shape).copy().ravel()
@@ -182,4 +182,6 @@ def omega_star_limit(eps_y, nu):
     check_eps_y(eps_y)
     check_nu(nu)
     out = np.array([omega_star_limit_kernel(e, n) for e, n in zip(eps_y, nu)], dtype=np.float64)
+    # a/R = (pi/2) C eps_y sqrt(A*) reaches 1 only at w* beyond double precision for tiny eps_y
+    check_finite_result(out, "the w* where a/R = 1", [("eps_y", eps_y)])
     return shaped(out, shape)

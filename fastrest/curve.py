@@ -21,8 +21,9 @@ from collections import namedtuple
 
 import numba as nb
 import numpy as np
+from numba.extending import overload
 
-from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_eps_y, check_nu,
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, broadcast_named, check_bool, check_eps_y, check_nu,
                           check_velocity, real_scalar, warn, warn_if_outside_validated)
 from .energy import V_SWITCH, f_star_kernel, omega_m_sorted_kernel
 from .contact import W_SWITCH
@@ -104,13 +105,14 @@ def hertz_rows(model):
 # --- scalar kernels on CurveData (the public njit API re-exports these) ----------------------
 
 @nb.njit(cache=True, inline="always")
-def curve_value(rows, v_max, shift, base, what, v):
+def curve_value(rows, v_max, shift, base, what, v_in):
     """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) at V1* = v from one curve's cells.
 
     1 < V1* <= v_max: the polynomial of V1*'s cell: the Hertz closed forms up to 1.9^1.25 (rows
     0..N_HERTZ-1, 2^6 cells per octave), the JG model above (row key(V1*) - base). 0 <= V1* <= 1:
     elastic, exact. NaN for V1* < 0, NaN or V1* > v_max. The one evaluation rule of curves and scenes.
     """
+    v = np.float64(v_in)  # float32 and integer speeds, as the Python API takes them
     if v > 1.0:
         if v <= v_max:
             # Hertz or JG cell by a select, not a branch: mixed speeds would mispredict
@@ -178,6 +180,26 @@ def _scalar_entry():
     _scalar_packed.compile(_SCALAR_SIG)
     cres = _scalar_packed.overloads.get(_scalar_packed.signatures[0])
     return getattr(cres, "entry_point", None) or _scalar_packed
+
+
+#: Scalar types the fast paths take as they are (float64 is a float subclass) or convert exactly.
+_FAST_FLOAT = (float, np.float64)
+_FAST_CONVERT = (np.float32, np.float16, np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16,
+                 np.uint32, np.uint64)
+
+
+def _fast_scalar(x):
+    """``x`` as a float if it is a real scalar the fast path may take (a Python float, a NumPy
+    float or integer scalar: what a loop over an array yields, or a Python int within float range);
+    None otherwise (booleans, strings, arrays: the checked path decides)."""
+    t = type(x)
+    if t in _FAST_FLOAT:
+        return x
+    if t in _FAST_CONVERT:
+        return float(x)
+    if t is int and -2**53 <= x <= 2**53:
+        return float(x)
+    return None
 
 
 def _pack(data, what, rows):
@@ -278,6 +300,16 @@ class Curve:
                         for what, rows in enumerate((data.omega_rows, data.e_rows, data.loss_rows))]
         self._entry = _scalar_entry()
 
+    # The compiled entry point does not pickle: ship the data, compile (or load) it on arrival.
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_entry"]
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._entry = _scalar_entry()
+
     def __repr__(self):
         return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
                 f"v_max={self.v_max!r}, cells={self.data.e_rows.shape[0]})")
@@ -299,24 +331,27 @@ class Curve:
 
     def omega_m(self, v1_star):
         """Normalised maximum interference w_m* at V1* (-), JGM eq (29)."""
-        if type(v1_star) is float:  # fast scalar path
-            r = self._entry(self._packed[0], v1_star)
+        v = v1_star if type(v1_star) is float else _fast_scalar(v1_star)
+        if v is not None:  # fast scalar path (floats and NumPy real scalars)
+            r = self._entry(self._packed[0], v)
             if r == r:
                 return r
         return self._eval(0, v1_star)
 
     def e(self, v1_star):
         """Coefficient of restitution at V1* (-), JGM eqs (16), (38)."""
-        if type(v1_star) is float:  # fast scalar path
-            r = self._entry(self._packed[1], v1_star)
+        v = v1_star if type(v1_star) is float else _fast_scalar(v1_star)
+        if v is not None:  # fast scalar path (floats and NumPy real scalars)
+            r = self._entry(self._packed[1], v)
             if r == r:
                 return r
         return self._eval(1, v1_star)
 
     def loss(self, v1_star):
         """Dissipated fraction 1 - e^2 at V1* (-), accurate in relative terms as V1* -> 1."""
-        if type(v1_star) is float:  # fast scalar path
-            r = self._entry(self._packed[2], v1_star)
+        v = v1_star if type(v1_star) is float else _fast_scalar(v1_star)
+        if v is not None:  # fast scalar path (floats and NumPy real scalars)
+            r = self._entry(self._packed[2], v)
             if r == r:
                 return r
         return self._eval(2, v1_star)
@@ -393,6 +428,7 @@ def curve(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False):
     """
     eps_y = real_scalar(eps_y, "eps_y")
     nu = real_scalar(nu, "nu")
+    extrapolate = check_bool(extrapolate, "extrapolate")
     check_eps_y(eps_y)
     check_nu(nu)
     if v_max is not None:
@@ -418,13 +454,34 @@ shift are shared. See :func:`fastrest.jit.e_scene`.
 """
 
 
+def material_index(k):
+    """Material index ``k`` as an int64 in Numba code: any integer type, or an integer-valued
+    float (as the Python API accepts); -1 (outside every scene: NaN) for anything else."""
+    raise TypeError("material_index is for Numba code")
+
+
+@overload(material_index, inline="always")
+def _material_index_impl(k):
+    if isinstance(k, nb.types.Boolean):
+        return lambda k: np.int64(-1)
+    if isinstance(k, nb.types.Integer):
+        if k.signed:
+            return lambda k: np.int64(k)
+        return lambda k: np.int64(k) if k < np.uint64(2**62) else np.int64(-1)
+    if isinstance(k, nb.types.Float):
+        return lambda k: np.int64(k) if (k >= 0.0 and k < 2.0**62 and k == math.floor(k)) else np.int64(-1)
+    return None
+
+
 @nb.njit(cache=True, inline="always")
-def scene_value(data, what, k, v):
+def scene_value(data, what, k_in, v_in):
     """Quantity ``what`` (0 w_m*, 1 e, 2 1 - e^2) of material k at V1*; NaN outside its curve."""
     # the index check by selects, not an early return: with the branch the caller's loop was
     # 10x slower (measured 24 ns against 2.5 ns per point in a user's @njit loop)
+    k = material_index(k_in)
+    v = np.float64(v_in)  # float32 and integer speeds, as the Python API takes them
     ok = k >= 0 and k < data.v_max.size
-    kk = k if ok else k - k  # 0 of k's own integer type (a literal 0 would unify uint64 to float)
+    kk = k if ok else np.int64(0)
     rows = data.omega_rows if what == 0 else (data.e_rows if what == 1 else data.loss_rows)
     # material k's JG rows come after those of materials 0..k-1: shift its base key accordingly
     r = curve_value(rows, data.v_max[kk], data.shift, data.base[kk] - data.offset[kk], what, v)
@@ -435,6 +492,20 @@ def scene_value(data, what, k, v):
 def _scene_array(data, what, k, v, out):
     for i in range(v.size):
         out[i] = scene_value(data, what, k[i], v[i])
+
+
+def _material_indices(material, n):
+    """Material indices as int64: integers, or integer-valued floats; TypeError for booleans and
+    non-numbers, ValueError for fractions."""
+    if isinstance(material, (bool, np.bool_)) or (isinstance(material, np.ndarray) and material.dtype == bool):
+        raise TypeError(f"material must be integer indices into the scene's {n} materials, got booleans")
+    k = np.asarray(material) if isinstance(material, np.ndarray) and material.dtype.kind in "iu" \
+        else as_float_array(material, "material")
+    if k.dtype.kind == "f":
+        if not np.all(np.isfinite(k) & (k == np.floor(k))):
+            raise ValueError(f"material must be integer indices into the scene's {n} materials; got {material!r}")
+        k = k.astype(np.int64)
+    return k
 
 
 class Scene:
@@ -475,9 +546,8 @@ class Scene:
 
     def _eval(self, what, v1_star, material):
         v = as_float_array(v1_star, "v1_star")
-        k = np.asarray(material)
-        if not np.issubdtype(k.dtype, np.integer):
-            raise ValueError(f"material must be integer indices into the scene's {len(self)} materials")
+        k = _material_indices(material, len(self))
+        broadcast_named((v, "v1_star"), (k, "material"))
         v, k = np.broadcast_arrays(v, k)
         shape = v.shape
         vf = np.ascontiguousarray(v).ravel()
@@ -527,5 +597,11 @@ def scene(materials, unloading="jcg", v_max=None, extrapolate=False):
     for k, m in enumerate(materials):
         if np.ndim(m) != 1 or len(m) != 2:
             raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {m!r}")
-    vm = [None] * len(materials) if v_max is None else np.broadcast_to(v_max, (len(materials),)).tolist()
+    if v_max is None:
+        vm = [None] * len(materials)
+    else:
+        v = as_float_array(v_max, "v_max")
+        if not (v.ndim == 0 or v.shape == (len(materials),)):
+            raise ValueError(f"v_max must be one number or one per material ({len(materials)}); got shape {v.shape}")
+        vm = np.broadcast_to(v, (len(materials),)).tolist()
     return Scene([curve(e, n, unloading, v, extrapolate) for (e, n), v in zip(materials, vm)])

@@ -17,7 +17,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_eps_y, check_nu,
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_bool, check_eps_y, check_nu,
                           check_velocity, warn, warn_if_outside_validated)
 from .contact import broadcast_inputs, shaped
 from .energy import V_SWITCH, omega_m_kernel
@@ -54,6 +54,7 @@ def impact_array(v, eps_y, nu, model, extrapolate, out):
 
 def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     model = unloading_model(unloading).code
+    extrapolate = check_bool(extrapolate, "extrapolate")
     (v, eps_y, nu), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
     check_velocity(v, "v1_star")
     check_eps_y(eps_y)

@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from ._jit import jit
-from ._validation import as_float_array, check_eps_y, check_nu, real_scalar
+from ._validation import as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu, real_scalar
 from .contact import W_SWITCH
 from .forward import P_table_forward, forward_data
 from .interpolation import cell_index, cell_polynomial
@@ -201,7 +201,7 @@ class ContactLaw:
 
     def new_state(self, n=None):
         """Zeros: the history of ``n`` virgin contacts, shape (n, STATE_SIZE) (or one row)."""
-        return np.zeros(STATE_SIZE if n is None else (int(n), STATE_SIZE))
+        return np.zeros(STATE_SIZE if n is None else (check_count(n, "n", 0, 10**9), STATE_SIZE))
 
     def force(self, interference, state=None):
         """Forces along a path of interferences in time order, from a virgin contact.
@@ -258,7 +258,7 @@ class ContactLaw:
         if not (n.is_integer() and 10 <= n <= 1e8):
             raise ValueError(f"steps_per_contact must be a whole number in [10, 1e8]; got {steps_per_contact!r}")
         state = self.new_state()
-        e, wm, steps = impact_in_time(self.data, v, int(n), bool(locate_switch), state)
+        e, wm, steps = impact_in_time(self.data, v, int(n), check_bool(locate_switch, "locate_switch"), state)
         if not e == e:
             try:
                 raise_interference_out_of_range(max(wm, self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
@@ -299,8 +299,11 @@ def contact_law(eps_y, nu, unloading="jcg", w_max=None, extrapolate=False, *, om
     """
     eps_y = real_scalar(eps_y, "eps_y")
     nu = real_scalar(nu, "nu")
+    extrapolate = check_bool(extrapolate, "extrapolate")
     check_eps_y(eps_y)
     check_nu(nu)
+    omega_c = float(check_finite_positive(real_scalar(omega_c, "omega_c"), "omega_c", "(m, or 1.0 for a normalised law)"))
+    P_c = float(check_finite_positive(real_scalar(P_c, "P_c"), "P_c", "(N, or 1.0 for a normalised law)"))
     model = _unloading.get(unloading)
     lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model.code))
     if w_max is None:

@@ -49,7 +49,8 @@ from collections import namedtuple
 import numba as nb
 import numpy as np
 
-from ._validation import OMEGA_M_STAR_MAX, check_eps_y, check_nu, warn_if_outside_validated
+from ._validation import (OMEGA_M_STAR_MAX, check_bool, check_count, check_eps_y, check_nu, real_scalar,
+                          warn_if_outside_validated)
 from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, p_star_jg
 from .energy import F_SWITCH, jg_integral
 from .limits import raise_interference_out_of_range, w_upper, w_upper_model
@@ -218,7 +219,9 @@ def _f_march(nodes, eps_y, nu, out):
 
 def forward_limit(eps_y, nu, extrapolate=False):
     """Largest w* a :class:`ForwardData` may serve: 425 (JGM's range) or, extrapolating, a/R = 1."""
-    return float(w_upper(float(eps_y), float(nu), bool(extrapolate)))
+    eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))
+    nu = float(check_nu(real_scalar(nu, "nu")))
+    return float(w_upper(eps_y, nu, check_bool(extrapolate, "extrapolate")))
 
 
 def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
@@ -249,10 +252,11 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
         For invalid material or w_max, or w_max beyond the model's range.
     """
     model = unloading_code(unloading)
-    eps_y = float(check_eps_y(eps_y))
-    nu = float(check_nu(nu))
+    eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))
+    nu = float(check_nu(real_scalar(nu, "nu")))
+    w_max = real_scalar(w_max, "w_max")
+    bits_per_octave = check_count(bits_per_octave, "bits_per_octave", 1, 10)
     warn_if_outside_validated(eps_y, nu)
-    w_max = float(w_max)
     if not (math.isfinite(w_max) and w_max >= 0.0):
         raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
     lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model))  # the unloading model may end first

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ._jit import jit
-from ._validation import OMEGA_M_STAR_MAX
+from ._validation import OMEGA_M_STAR_MAX, check_bool
 from .contact import omega_star_limit_kernel
 from .energy import f_star_kernel
 from . import unloading as _unloading
@@ -54,7 +54,7 @@ def _code(unloading):
 def omega_limit(eps_y, nu, extrapolate=False, unloading=None):
     """Largest w_m* allowed for one material (-): 425, a/R = 1 extrapolating, and the end of the
     ``unloading`` model (a name; None: the loading law alone)."""
-    e, n, x = float(eps_y), float(nu), bool(extrapolate)
+    e, n, x = float(eps_y), float(nu), check_bool(extrapolate, "extrapolate")
     return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
 
 

@@ -13,10 +13,11 @@ implements the equations as printed, not the table values (see docs/model.md).
 """
 from dataclasses import dataclass
 import math
+import sys
 
 import numpy as np
 
-from ._validation import check_finite_positive, check_nu, real_scalar
+from ._validation import as_float_array, check_finite_positive, check_nu, real_scalar
 from .critical import (c_of_nu, critical_area, critical_energy, critical_force, critical_interference,
                        critical_velocity, effective_mass, effective_modulus, effective_radius)
 
@@ -140,19 +141,23 @@ class Impact:
     @classmethod
     def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
         """Two free spheres: R_eff = R1 R2/(R1+R2), reduced mass m1 m2/(m1+m2), V1 = relative speed."""
+        for name, m in (("sphere1", sphere1), ("sphere2", sphere2)):
+            if not isinstance(m, Material):
+                raise TypeError(f"{name} must be a fastrest.Material, got {type(m).__name__}")
+        R1, R2 = real_scalar(R1, "R1"), real_scalar(R2, "R2")
         check_finite_positive(R1, "R1", "(m)")
         check_finite_positive(R2, "R2", "(m)")
-        m1 = _sphere_mass(sphere1, R1, mass1, "mass1")
-        m2 = _sphere_mass(sphere2, R2, mass2, "mass2")
+        m1 = _sphere_mass(sphere1, R1, mass1, "mass1", "R1")
+        m2 = _sphere_mass(sphere2, R2, mass2, "mass2", "R2")
         self = cls.__new__(cls)
         self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), effective_mass(m1, m2))
         return self
 
     def _init(self, sphere, R1, other, R2, mass):
         if not isinstance(sphere, Material):
-            raise TypeError("sphere must be a fastrest.Material")
+            raise TypeError(f"sphere must be a fastrest.Material, got {type(sphere).__name__}")
         if other is not None and not isinstance(other, Material):
-            raise TypeError("flat must be a fastrest.Material or None (rigid flat)")
+            raise TypeError(f"flat must be a fastrest.Material or None (rigid flat), got {type(other).__name__}")
         check_finite_positive(R1, "R", "(m)")
         self.sphere, self.flat = sphere, other
         self.R_eff = R1 if R2 is None else effective_radius(R1, R2)
@@ -166,6 +171,25 @@ class Impact:
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
+        self._check_scales()
+
+    def _check_scales(self):
+        """Every scale the model divides by must be a finite, normal float: inputs far outside any
+        physical range (R = 1e300 m, E = 1e70 Pa) are refused here, not by an OverflowError or a
+        NaN later."""
+        try:
+            vals = self.critical_values()
+        except (OverflowError, ZeroDivisionError, ValueError) as exc:
+            vals = {"error": exc}
+        for k, v in vals.items():
+            if k == "nu":
+                continue
+            if not (isinstance(v, float) and math.isfinite(v) and v >= sys.float_info.min):
+                raise ValueError(
+                    f"this impact's {k} = {v!r} is not a finite, normal double: E, Sy, R and the mass "
+                    f"(SI units: Pa, Pa, m, kg) are too large or too small together (E_eff = "
+                    f"{self.E_eff!r} Pa, Sy = {self.yielding.Sy!r} Pa, R_eff = {self.R_eff!r} m, "
+                    f"mass = {self.mass!r} kg)")
 
     # --- material parameters of the normalised law ---
     @property
@@ -267,8 +291,8 @@ class Impact:
 
     def rebound_velocity(self, V1, unloading="jcg", extrapolate=False):
         """Rebound speed V2 (m/s) for impact speed V1 (m/s), eq (38)."""
-        V1a = np.asarray(V1, dtype=np.float64)
-        out = self.e(V1, unloading=unloading, extrapolate=extrapolate) * V1a
+        out = self.e(V1, unloading=unloading, extrapolate=extrapolate)  # validates V1
+        out = out * as_float_array(V1, "V1")
         return float(out) if np.ndim(out) == 0 else out
 
     def contact_law(self, unloading="jcg", extrapolate=False):
@@ -291,9 +315,13 @@ class Impact:
         return w_res * self.omega_c, r_ratio * self.R_eff
 
 
-def _sphere_mass(material, R, mass, name):
+def _sphere_mass(material, R, mass, name, R_name="R"):
     if mass is not None:
-        return float(check_finite_positive(mass, name, "(kg)"))
+        return float(check_finite_positive(real_scalar(mass, name), name, "(kg)"))
     if material.rho is None:
         raise ValueError(f"{name} is required (kg) when the sphere's Material has no density rho")
-    return 4.0 / 3.0 * math.pi * R**3 * material.rho
+    m = 4.0 / 3.0 * math.pi * float(R) ** 3 * material.rho if float(R) < 1e100 else math.inf
+    if not (math.isfinite(m) and m >= sys.float_info.min):
+        raise ValueError(f"the sphere's mass (4/3) pi R^3 rho = {m!r} kg ({R_name} = {float(R)!r} m, rho = "
+                         f"{material.rho!r} kg/m^3) is not a finite, normal double; give mass= (kg)")
+    return m

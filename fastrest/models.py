@@ -50,7 +50,10 @@ import numpy as np
 from ._validation import (
     EPS_Y_VALIDATED,
     ValidityWarning,
+    broadcast_named,
+    check_bool,
     check_eps_y,
+    check_finite_result,
     check_finite_positive,
     check_nu,
     check_velocity,
@@ -90,10 +93,26 @@ THORNTON_COEFFICIENT = math.sqrt(6.0 * math.sqrt(3.0) / 5.0)
 JGM_FIT_V_MAX = 1000.0
 
 
-def _out(a):
-    """A 0-d result becomes a Python float; arrays are returned as they are."""
+def _out(a, *inputs):
+    """A 0-d result becomes a Python float; arrays are returned as they are. A result that is not
+    finite (the formula overflowed double precision) raises ValueError naming ``inputs``, (name,
+    value) pairs, instead of being returned."""
     a = np.asarray(a, dtype=np.float64)
+    check_finite_result(a, "e", inputs)
     return float(a) if a.ndim == 0 else a
+
+
+def _bcast(*named):
+    """np.broadcast_arrays with a ValueError naming the parameters whose shapes differ."""
+    broadcast_named(*named)
+    return np.broadcast_arrays(*(a for a, _ in named))
+
+
+def _positive_speed(V1, name, eq):
+    """Power laws in 1/V1 are infinite at V1 = 0: refuse it rather than return inf."""
+    if np.any(V1 == 0.0):
+        raise ValueError(f"{name} must be > 0 for {eq}: the formula is infinite at {name} = 0 "
+                         "(it has no elastic range of its own; see the docstring)")
 
 
 def _v_star(v1_star):
@@ -223,13 +242,13 @@ def thornton(v1_star, nu):
     """
     v = _v_star(v1_star)
     nu = check_nu(nu)
-    v, nu = np.broadcast_arrays(v, nu)
+    v, nu = _bcast((v, "v1_star"), (nu, "nu"))
     ratio = v * np.asarray(critical_velocity_ratios(nu)["thornton"])  # V1 / V_y,Th
     plastic = ratio > 1.0
     x = 1.0 / np.where(plastic, ratio, 1.0)
     e = (THORNTON_COEFFICIENT * np.sqrt(1.0 - x * x / 6.0)
          * (x / (x + 2.0 * np.sqrt((6.0 - x * x) / 5.0))) ** 0.25)
-    return _out(np.where(plastic, e, 1.0))
+    return _out(np.where(plastic, e, 1.0), ("v1_star", v), ("nu", nu))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -259,9 +278,9 @@ def weir_tallon(V1, Sy, E_eff, rho, R1=None, R=None, *, cap=False):
     Below its own unit-e speed: eq (3) is a high-speed (fully plastic) power law with no yield
     velocity of its own. By default the formula is returned as printed for every V1: it exceeds 1
     for V1 < :func:`weir_tallon_unit_velocity` (the speed where it equals 1, about 17 V_c for the
-    JGM Table 1 material, much larger than any yield velocity, as JGM note under Figs 7-8) and is
-    +inf at V1 = 0. Pass ``cap=True`` to get min(1, e) instead; this is an explicit choice of
-    the caller, never applied silently.
+    JGM Table 1 material, much larger than any yield velocity, as JGM note under Figs 7-8). At V1 = 0
+    it is infinite: ValueError (with ``cap=True``, 1). Pass ``cap=True`` to get min(1, e) instead;
+    this is an explicit choice of the caller, never applied silently.
 
     Radii: JGM print (R1/R)^(3/8) without defining R1 beyond "R1 = R is the current case". The
     formula depends on rho and the radii only through the mass of the impacting body; a Johnson-type
@@ -297,13 +316,17 @@ def weir_tallon(V1, Sy, E_eff, rho, R1=None, R=None, *, cap=False):
     Sy = check_finite_positive(Sy, "Sy", "(Pa)")
     E_eff = check_finite_positive(E_eff, "E_eff", "(Pa)")
     rho = check_finite_positive(rho, "rho", "(kg/m^3)")
+    cap = check_bool(cap, "cap")
     ratio = _radius_ratio(R1, R)
-    with np.errstate(divide="ignore"):
+    broadcast_named((V1, "V1"), (Sy, "Sy"), (E_eff, "E_eff"), (rho, "rho"), (ratio, "R1/R"))
+    if not cap:  # capped, e = 1 at V1 = 0 is the formula's limit
+        _positive_speed(V1, "V1", "Weir & Tallon's eq (3)")
+    with np.errstate(all="ignore"):
         e = (3.1 * (Sy / E_eff) ** 0.625 * ratio ** 0.375
              * (np.sqrt(E_eff / rho) / V1) ** 0.25)
     if cap:
         e = np.minimum(e, 1.0)
-    return _out(e)
+    return _out(e, ("V1", V1), ("Sy", Sy), ("E_eff", E_eff), ("rho", rho))
 
 
 def johnson(V1, Sy, E_eff, rho, *, cap=False):
@@ -362,7 +385,10 @@ def weir_tallon_unit_velocity(Sy, E_eff, rho, R1=None, R=None):
     E_eff = check_finite_positive(E_eff, "E_eff", "(Pa)")
     rho = check_finite_positive(rho, "rho", "(kg/m^3)")
     ratio = _radius_ratio(R1, R)
-    return _out(3.1**4 * (Sy / E_eff) ** 2.5 * ratio**1.5 * np.sqrt(E_eff / rho))
+    broadcast_named((Sy, "Sy"), (E_eff, "E_eff"), (rho, "rho"), (ratio, "R1/R"))
+    with np.errstate(all="ignore"):
+        out = 3.1**4 * (Sy / E_eff) ** 2.5 * ratio**1.5 * np.sqrt(E_eff / rho)
+    return _out(out, ("Sy", Sy), ("E_eff", E_eff), ("rho", rho))
 
 
 def weir_tallon_normalised(v1_star, eps_y, nu):
@@ -373,8 +399,8 @@ def weir_tallon_normalised(v1_star, eps_y, nu):
     sqrt(E'/rho) / V1 = sqrt(40 pi) (pi C eps_y)^(-5/2) / V1*. Substituting in eq (3), eps_y cancels
     exactly: e depends on V1* and nu only (e = 2.027 V1*^(-1/4) for nu = 0.33, i.e. e = 1 at
     V1* = 16.9). The same holds for any mass if rho is the mass-equivalent density 3 m/(4 pi R^3),
-    as :func:`evaluate` uses. The formula is returned for all V1* (> 1 below the unit-e speed,
-    +inf at 0); see :func:`weir_tallon`.
+    as :func:`evaluate` uses. The formula is returned for all V1* > 0 (> 1 below the unit-e speed;
+    V1* = 0, where it is infinite, raises ValueError); see :func:`weir_tallon`.
 
     Parameters
     ----------
@@ -393,11 +419,12 @@ def weir_tallon_normalised(v1_star, eps_y, nu):
     v = _v_star(v1_star)
     eps = check_eps_y(eps_y)
     nu = check_nu(nu)
+    broadcast_named((v, "v1_star"), (eps, "eps_y"), (nu, "nu"))
     v, eps, nu = np.broadcast_arrays(v, eps, nu)
+    _positive_speed(v, "v1_star", "Weir & Tallon's eq (3)")
     C = np.asarray(poisson_factor(nu))
-    with np.errstate(divide="ignore"):
-        e = 3.1 * (40.0 * math.pi) ** 0.125 * (math.pi * C) ** -0.625 * v**-0.25
-    return _out(e)
+    e = 3.1 * (40.0 * math.pi) ** 0.125 * (math.pi * C) ** -0.625 * v**-0.25
+    return _out(e, ("v1_star", v))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -418,10 +445,16 @@ def _cl_params(nu, critical):
 
 
 def _cl_e(s, r):
-    """Normalised Chang-Ling e(s), s = V1 / V_onset; e = 1 for s <= 1."""
+    """Normalised Chang-Ling e(s), s = V1 / V_onset; e = 1 for s <= 1.
+
+    Evaluated as s^(-1/4) (k + (1 - k)/s^2)^(3/8), k = (16/15) r, the same expression divided by
+    s^(3/4) inside and out: s^2 does not overflow for large s (V1* = 1e160 gave inf).
+    """
     plastic = s > 1.0
     s_safe = np.where(plastic, s, 1.0)
-    e = (1.0 + (16.0 / 15.0) * r * (s_safe * s_safe - 1.0)) ** 0.375 / s_safe
+    k = (16.0 / 15.0) * r
+    with np.errstate(under="ignore"):
+        e = s_safe**-0.25 * (k + (1.0 - k) / s_safe / s_safe) ** 0.375
     return np.where(plastic, e, 1.0)
 
 
@@ -487,9 +520,10 @@ def chang_ling(v1_star, eps_y, nu, *, critical="ceb"):
     v = _v_star(v1_star)
     eps = check_eps_y(eps_y)
     nu = check_nu(nu)
+    broadcast_named((v, "v1_star"), (eps, "eps_y"), (nu, "nu"))
     v, eps, nu = np.broadcast_arrays(v, eps, nu)
     r, s_per_v = _cl_params(nu, critical)
-    return _out(_cl_e(v * s_per_v, r))
+    return _out(_cl_e(v * s_per_v, r), ("v1_star", v))
 
 
 def chang_ling_dimensional(impact, V1, *, critical="ceb"):
@@ -520,6 +554,7 @@ def chang_ling_dimensional(impact, V1, *, critical="ceb"):
     """
     if critical not in _CL_CRITICAL:
         raise ValueError(f"critical must be one of {_CL_CRITICAL}; got {critical!r}")
+    _check_impact(impact)
     V1 = check_velocity(V1, "V1", "(m/s)")
     E, R, m = impact.E_eff, impact.R_eff, impact.mass
     KH = ceb_hardness_factor(impact.nu) * impact.Sy
@@ -528,13 +563,14 @@ def chang_ling_dimensional(impact, V1, *, critical="ceb"):
     else:
         w_c = impact.omega_c
     U_elastic = 8.0 / 15.0 * E * math.sqrt(R) * w_c**2.5
-    kinetic = 0.5 * m * V1 * V1
-    plastic = kinetic > U_elastic
-    work = np.where(plastic, kinetic - U_elastic, 0.0)
-    w_m = 0.5 * (w_c + np.sqrt(w_c * w_c + 4.0 * work / (math.pi * KH * R)))
-    rebound = 8.0 / 15.0 * E * math.sqrt(R) * w_c * (2.0 * w_m - w_c) ** 1.5
-    e = np.sqrt(rebound / np.where(plastic, kinetic, U_elastic))
-    return _out(np.where(plastic, e, 1.0))
+    with np.errstate(all="ignore"):  # overflow: refused by _out below
+        kinetic = 0.5 * m * V1 * V1
+        plastic = kinetic > U_elastic
+        work = np.where(plastic, kinetic - U_elastic, 0.0)
+        w_m = 0.5 * (w_c + np.sqrt(w_c * w_c + 4.0 * work / (math.pi * KH * R)))
+        rebound = 8.0 / 15.0 * E * math.sqrt(R) * w_c * (2.0 * w_m - w_c) ** 1.5
+        e = np.sqrt(rebound / np.where(plastic, kinetic, U_elastic))
+    return _out(np.where(plastic, e, 1.0), ("V1", V1))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -550,8 +586,8 @@ def _wu_inputs(v, eps, nu, scale):
     if nu is None:
         if scale == "wu":
             raise ValueError("nu (Poisson's ratio, in [0, 0.5)) is required when scale='wu'")
-        return np.broadcast_arrays(v, eps)
-    v, eps, nu = np.broadcast_arrays(v, eps, check_nu(nu))
+        return _bcast((v, "v1_star"), (eps, "eps_y"))
+    v, eps, nu = _bcast((v, "v1_star"), (eps, "eps_y"), (check_nu(nu), "nu"))
     if scale == "wu":
         v = v * np.asarray(critical_velocity_ratios(nu)["wu"])  # V1/V_y,Wu
     return v, eps
@@ -582,7 +618,9 @@ def wu_finite_plastic_velocity(eps_y, nu=None, *, scale="jgm"):
     """
     eps = check_eps_y(eps_y)
     one, eps = _wu_inputs(np.float64(1.0), eps, nu, scale)  # one = V_c / V_y in this scale
-    return _out(0.008 / (eps * eps) / one)
+    with np.errstate(over="ignore"):
+        out = 0.008 / (eps * eps) / one
+    return _out(out, ("eps_y", eps))
 
 
 def wu(v1_star, eps_y, nu=None, *, scale="jgm"):
@@ -626,13 +664,14 @@ def wu(v1_star, eps_y, nu=None, *, scale="jgm"):
     v = _v_star(v1_star)
     eps = check_eps_y(eps_y)
     V, eps = _wu_inputs(v, eps, nu, scale)
-    V_fp = 0.008 / (eps * eps)
-    plastic = V > 1.0
-    Vs = np.where(plastic, V, 1.0)
-    e40 = 2.08 * Vs**-0.25
-    e41 = 0.62 * (Vs * eps) ** -0.5
-    e = np.where(Vs <= V_fp, e40, e41)
-    return _out(np.where(plastic, e, 1.0))
+    with np.errstate(all="ignore"):
+        V_fp = 0.008 / (eps * eps)
+        plastic = V > 1.0
+        Vs = np.where(plastic, V, 1.0)
+        e40 = 2.08 * Vs**-0.25
+        e41 = 0.62 * (Vs * eps) ** -0.5
+        e = np.where(Vs <= V_fp, e40, e41)
+    return _out(np.where(plastic, e, 1.0), ("v1_star", V), ("eps_y", eps))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -679,14 +718,14 @@ def jgm_fit_jcg(v1_star, eps_y):
     """
     v = _v_star(v1_star)
     eps = check_eps_y(eps_y)
-    v, eps = np.broadcast_arrays(v, eps)
+    v, eps = _bcast((v, "v1_star"), (eps, "eps_y"))
     _warn_fit(v, eps, True)
     low = np.where(v > 1.0, np.minimum(v, 60.0), 2.0)
     high = np.where(v > 60.0, v, 61.0)
     e43 = 1.0 - 0.1 * np.log(low) * ((low - 1.0) / 59.0) ** 0.156
     e44 = 1.0 - 0.1 * math.log(60.0) - 0.11 * np.log(high / 60.0) * (high - 60.0) ** (2.36 * eps)
     e = np.where(v <= 1.0, 1.0, np.where(v <= 60.0, e43, e44))
-    return _out(e)
+    return _out(e, ("v1_star", v), ("eps_y", eps))
 
 
 def jgm_fit_etsion(v1_star, eps_y):
@@ -711,11 +750,11 @@ def jgm_fit_etsion(v1_star, eps_y):
     """
     v = _v_star(v1_star)
     eps = check_eps_y(eps_y)
-    v, eps = np.broadcast_arrays(v, eps)
+    v, eps = _bcast((v, "v1_star"), (eps, "eps_y"))
     _warn_fit(v, eps, False)
     vs = np.where(v > 1.0, v, 2.0)
     e = 1.0 - 0.0361 * eps**-0.114 * np.log(vs) * (vs - 1.0) ** (9.5 * eps)
-    return _out(np.where(v > 1.0, e, 1.0))
+    return _out(np.where(v > 1.0, e, 1.0), ("v1_star", v), ("eps_y", eps))
 
 
 @numba.njit(cache=True)
@@ -784,7 +823,7 @@ def _registry(fn, args):
     """Wrap ``fn`` as ``(v1_star, eps_y, nu) -> e``; ``args`` names the arguments ``fn`` takes."""
     def model(v1_star, eps_y, nu):
         given = {"v1_star": _v_star(v1_star), "eps_y": check_eps_y(eps_y), "nu": check_nu(nu)}
-        shape = np.broadcast_shapes(*(a.shape for a in given.values()))
+        shape = broadcast_named(*((a, n) for n, a in given.items()))
         e = fn(*(given[a] for a in args))
         return _out(np.broadcast_to(e, shape).copy() if shape else e)
 
@@ -808,6 +847,13 @@ MODELS = {
     "jgm_fit_jcg": _registry(jgm_fit_jcg, ("v1_star", "eps_y")),
     "jgm_fit_etsion": _registry(jgm_fit_etsion, ("v1_star", "eps_y")),
 }
+
+
+def _check_impact(impact):
+    from .materials import Impact
+
+    if not isinstance(impact, Impact):
+        raise TypeError(f"impact must be a fastrest.Impact, got {type(impact).__name__}")
 
 
 def evaluate(model_name, impact, V1, *, rho=None):
@@ -843,8 +889,9 @@ def evaluate(model_name, impact, V1, *, rho=None):
     float or ndarray
         e (dimensionless).
     """
-    if model_name not in MODELS:
+    if not (isinstance(model_name, str) and model_name in MODELS):
         raise ValueError(f"model_name must be one of {sorted(MODELS)}; got {model_name!r}")
+    _check_impact(impact)
     if rho is not None and model_name != "weir_tallon":
         raise ValueError("rho (kg/m^3) applies only to model_name='weir_tallon'")
     V1 = check_velocity(V1, "V1", "(m/s)")

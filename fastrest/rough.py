@@ -28,6 +28,7 @@ kernels, the same path a user's own Numba code would take.
 """
 import math
 import numbers
+import sys
 import warnings
 from collections import namedtuple
 from dataclasses import dataclass, field, fields
@@ -36,8 +37,9 @@ import numba as nb
 import numpy as np
 
 from . import forward as fw
-from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning,
-                          check_finite_positive, warn, warn_if_outside_validated)
+from ._threads import run_parallel
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, ValidityWarning, as_float_array,
+                          check_bool, check_finite_positive, real_scalar, warn, warn_if_outside_validated)
 from .contact import W_SWITCH
 from .interpolation import GAUSS_U, chebyshev_nodes, fit_cells, cell_polynomial
 from .limits import interference_limit_message
@@ -67,6 +69,25 @@ TAIL_L = 45.0
 PDF_CELLS_PER_SIGMA = 64
 _INV_SQRT_2PI = 1.0 / math.sqrt(2.0 * math.pi)
 _MAX_ITER = 200
+#: Fewest summits (N = eta A_n) of a statistical surface: below it the flat would have to sink
+#: tens of standard deviations into the tail of the height distribution to stop.
+MIN_SUMMITS = 1e-6
+MAX_SUMMITS = 1e30
+#: Range of sigma / omega_c (the plasticity index squared) where the statistical model is computed:
+#: heights enter the quadrature as w* = (s - s_d) sigma/omega_c, which loses the resolution of s
+#: (relative 1e-16 w*/(sigma/omega_c)) when sigma/omega_c is tiny.
+RHO_W_RANGE = (1e-6, 1e12)
+
+
+#: Gaussian heights: the density exp(-s^2/2) underflows soon after s = 37 (1e-298).
+S_UNDERFLOW = 36.0
+#: The Hertz estimate (the start of every statistical JG solve) stops at this many times the w*
+#: where the law ends (a/R = 1): JG summits sink deeper than Hertz ones, so beyond it so does the impact.
+HERTZ_CAP = 4.0
+
+
+def _bad_energy_word(x):
+    return "too large" if not x < math.inf else "too small"
 
 # status codes of the solvers
 _OK, _NEEDS_TABLE, _FAILED = 0, 1, 2
@@ -291,6 +312,8 @@ def _gw_integrals(data, g, sd, hertz, full, w_cap, out):
                 q = min(seg_end, hw)
             else:
                 q = min(seg_end, p + hw, 2.0 * p)
+            if not q > p:  # a panel below the rounding of p: end the segment (no endless loop)
+                q = seg_end
             yielded = p >= 1.0
             for j in range(GL_ORDER):
                 if p == 0.0:
@@ -335,7 +358,7 @@ def _gw_solve(data, g, energy, s0, hertz, w_cap, clamp, buf):
     r = g.rho_w
     target = energy**0.4
     s_cov = -np.inf
-    if not hertz:
+    if not hertz or w_cap > 0.0:  # the Hertz estimate too, when given a cap
         s_cov = _s_covered(g, w_cap)
         s_cov += 1e-12 * (1.0 + abs(s_cov))  # rounding margin
     lo = -np.inf   # G(lo) >= energy
@@ -361,17 +384,18 @@ def _gw_solve(data, g, energy, s0, hertz, w_cap, clamp, buf):
         if gs == energy:
             return _OK, s, buf[6]
         if lo == -np.inf or hi == np.inf:
-            # no bracket yet: steps doubling away from the start
+            # no bracket yet: steps doubling away from the start, or Newton's step when it points
+            # the same way and goes further (Newton alone creeps up a Gaussian tail, 2.5/s per step)
             if lo == -np.inf:
                 sn = s - step
             else:
                 sn = s + step
-            step *= 2.0
-            # Newton's step instead, when it points the same way
             if gs > 0.0 and buf[1] > 0.0:
                 sn_newton = s + (gs**0.4 - target) * gs**0.6 / (n_tot * r * buf[1])
-                if (lo == -np.inf and sn_newton < s) or (hi == np.inf and sn_newton > s):
+                if (lo == -np.inf and sn_newton < sn) or (hi == np.inf and sn_newton > sn):
                     sn = sn_newton
+                    step *= 0.5
+            step *= 2.0
             s = sn
             continue
         sn = np.nan
@@ -434,9 +458,9 @@ def gaussian_summits(n, sigma, seed=None):
     seed : int or numpy.random.Generator, optional
         Seed of ``numpy.random.default_rng``; the same seed gives the same heights.
     """
-    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
-        raise ValueError(f"n (number of summits) must be an integer >= 1; got {n!r}")
-    sigma = float(check_finite_positive(sigma, "sigma", "(m, standard deviation of summit heights)"))
+    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= 10**9:
+        raise ValueError(f"n (number of summits) must be an integer in [1, 1e9]; got {n!r}")
+    sigma = float(check_finite_positive(real_scalar(sigma, "sigma"), "sigma", "(m, standard deviation of summit heights)"))
     return np.random.default_rng(seed).normal(0.0, sigma, int(n))
 
 
@@ -469,8 +493,15 @@ class GreenwoodWilliamson:
     support: tuple | None = None
 
     def __post_init__(self):
+        # plain floats: an array or a string here would fail far from its cause
+        for name in ("eta", "A_n") + (("sigma",) if self.sigma is not None else ()):
+            object.__setattr__(self, name, real_scalar(getattr(self, name), name))
         check_finite_positive(self.eta, "eta", "(1/m^2, summit density)")
         check_finite_positive(self.A_n, "A_n", "(m^2, nominal area)")
+        n = self.eta * self.A_n
+        if not (MIN_SUMMITS <= n <= MAX_SUMMITS):
+            raise ValueError(f"the surface has N = eta A_n = {n!r} summits (eta = {self.eta!r} 1/m^2, A_n = "
+                             f"{self.A_n!r} m^2); N must be in [{MIN_SUMMITS:g}, {MAX_SUMMITS:g}]")
         if self.pdf is None:
             if self.sigma is None:
                 raise ValueError("sigma (m, standard deviation of summit heights) is required")
@@ -480,9 +511,9 @@ class GreenwoodWilliamson:
         else:
             if not callable(self.pdf):
                 raise ValueError("pdf must be a callable p(z) (1/m)")
-            if self.support is None or len(self.support) != 2:
+            if self.support is None or np.ndim(self.support) != 1 or len(self.support) != 2:
                 raise ValueError("a user pdf needs support=(z_lo, z_hi) (m)")
-            lo, hi = (float(v) for v in self.support)
+            lo, hi = (real_scalar(v, "support") for v in self.support)
             if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
                 raise ValueError(f"support must be finite with z_lo < z_hi (m); got {self.support!r}")
         if self.sigma is not None:
@@ -570,8 +601,11 @@ class RoughSurface:
         if not isinstance(material, Material):
             raise TypeError("material must be a fastrest.Material")
         self.material = material
-        self.R_a = float(check_finite_positive(R_a, "R_a", "(m, summit radius)"))
-        self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
+        self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
+        try:
+            self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
+        except ValueError as exc:
+            raise ValueError(f"R_a = {self.R_a!r} m: {exc}") from None
         if (heights is None) == (gw is None):
             raise ValueError("give exactly one of heights= (explicit summits) and gw= (statistical)")
         ip = self.impact_params
@@ -580,7 +614,7 @@ class RoughSurface:
         self.omega_c, self.P_c, self.U_c = ip.omega_c, ip.P_c, ip.U_c
         self._tables = {}
         if heights is not None:
-            z = np.array(heights, dtype=np.float64).ravel()
+            z = np.array(as_float_array(heights, "heights"), dtype=np.float64).ravel()
             if z.size == 0:
                 raise ValueError("heights is empty: a surface needs at least one summit")
             if not np.all(np.isfinite(z)):
@@ -589,8 +623,12 @@ class RoughSurface:
             self.heights = z
             self.gw = None
             self.z_top = float(z.max())
-            self.z_mean = float(z.mean())
-            self.sigma = float(z.std())
+            with np.errstate(over="ignore", invalid="ignore"):
+                self.z_mean = float(z.mean())
+                self.sigma = float(z.std())
+            if not (math.isfinite(self.sigma) and math.isfinite(self.z_mean)):
+                raise ValueError("heights span more than the range of a float64 (m): their standard "
+                                 "deviation overflows")
             self.n_summits = z.size
             self._h = np.ascontiguousarray((z - self.z_top) / self.omega_c)
         else:
@@ -603,6 +641,14 @@ class RoughSurface:
             self.gw = gw
             self.n_summits = gw.n_summits
             self._gwdata, self.sigma = _gw_data(gw, self.omega_c)
+            r = self._gwdata.rho_w
+            if not (RHO_W_RANGE[0] <= r <= RHO_W_RANGE[1]):
+                raise ValueError(
+                    f"sigma / omega_c = {r!r} (sigma = {self.sigma!r} m, omega_c = {self.omega_c!r} m of a "
+                    f"summit of radius R_a = {self.R_a!r} m) is outside [{RHO_W_RANGE[0]:g}, "
+                    f"{RHO_W_RANGE[1]:g}], where the statistical model is computed: below, all summits "
+                    "have practically one height (use explicit heights=); above, the height "
+                    "distribution is wider than the model's w* range by many orders of magnitude")
 
     def __repr__(self):
         desc = (f"{self.n_summits} summits" if self.kind == "explicit"
@@ -685,15 +731,24 @@ class RoughSurface:
             Invalid input, or an impact that drives summits past the model's range.
         """
         code = unloading_code(unloading)
-        M = float(check_finite_positive(M, "M", "(kg, mass of the flat)"))
-        v = np.asarray(V1, dtype=np.float64)
+        M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
+        extrapolate = check_bool(extrapolate, "extrapolate")
+        v = as_float_array(V1, "V1")
         shape = v.shape
         flat = np.ascontiguousarray(v.ravel())
         bad = ~(np.isfinite(flat) & (flat > 0))
         if np.any(bad):
             raise ValueError(f"V1 must be finite and > 0 (m/s); got {flat[bad][0]!r} (at V1 = 0 no "
                              "summit is ever touched and e_s is undefined)")
-        energy = M * flat**2 / (2.0 * self.U_c)  # (V1/V_c)^2: impact energy over U_c
+        with np.errstate(over="ignore", under="ignore"):
+            energy = M * flat**2 / (2.0 * self.U_c)  # (V1/V_c)^2: impact energy over U_c
+        bad = ~(np.isfinite(energy) & (energy >= sys.float_info.min))
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            raise ValueError(
+                f"the impact energy (1/2) M V1^2 at V1 = {float(flat[k])!r} m/s, M = {M!r} kg is "
+                f"{_bad_energy_word(energy[k])} against one summit's critical energy U_c = {self.U_c!r} J: "
+                f"(V1/V_c)^2 = {float(energy[k])!r} must be a finite, normal double")
         if flat.size == 0:
             raw = np.zeros((10, 0))
         elif self.kind == "explicit":
@@ -712,17 +767,19 @@ class RoughSurface:
         return RoughImpact(V1=shaped(flat), M=M, unloading=unloading, kind=self.kind,
                            **{k: shaped(a) for k, a in out.items()})
 
-    def _grow_or_raise(self, unloading, need, extrapolate, v1_bad):
+    def _grow_or_raise(self, unloading, need, extrapolate, v1_bad, M):
         """Grow the forward table to cover w* = need, or raise if the model's range ends first."""
         lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
         data = self._tables.get(unloading_code(unloading))
         if data is not None and data.w_max >= lim:
             what = interference_limit_message(max(need, lim * (1 + 1e-15)), self.eps_y, self.nu, extrapolate)
             if self.kind == "statistical":
-                what += (f". The height distribution is integrated until its tail is negligible "
+                what += (f". The surface has N = eta A_n = {self.n_summits:.6g} summits; its height distribution "
+                         f"(sigma = {self.sigma!r} m) is integrated until its tail is negligible "
                          f"(here up to w* = {need:.4g}); a pdf with bounded support "
                          "(GreenwoodWilliamson(pdf=..., support=...)) truncates it")
-            raise ValueError(f"the impact at V1 = {v1_bad!r} m/s drives summits to a w* that {what}")
+            raise ValueError(f"the impact at V1 = {v1_bad!r} m/s (M = {M!r} kg) drives summits to a w* "
+                             f"that {what}")
         return self.forward(unloading, min(lim, max(1.25 * need, 2.0 * (data.w_max if data else 0.0))),
                             extrapolate)
 
@@ -733,14 +790,14 @@ class RoughSurface:
         # table, so results do not depend on what the surface computed before)
         hz = np.zeros((9, n))
         dummy = self._hertz_dummy(unloading)
-        _explicit_impacts(dummy, h, energy, energy**0.4, True, 0.0, False, hz)
+        run_parallel(_explicit_impacts, None, dummy, h, energy, energy**0.4, True, 0.0, False, hz)
         if np.any(hz[0] != _OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         x0 = hz[1].copy()
         # JG summits sink deeper than Hertz ones: start with twice the estimate
         return self._solve_growing_table(
-            lambda data, w_cap, at_limit, out: _explicit_impacts(data, h, energy, x0, False, w_cap,
-                                                                 at_limit, out),
+            lambda data, w_cap, at_limit, out: run_parallel(_explicit_impacts, None, data, h, energy, x0, False,
+                                                            w_cap, at_limit, out),
             9, 2.0 * float(x0.max()), energy, unloading, extrapolate, M)
 
     def _solve_growing_table(self, run, rows, w_guess, energy, unloading, extrapolate, M):
@@ -757,7 +814,7 @@ class RoughSurface:
                 break
             k = int(np.flatnonzero(need)[0])
             data = self._grow_or_raise(unloading, float(out[2, need].max()), extrapolate,
-                                       float(np.sqrt(2.0 * self.U_c * energy[k] / M)))
+                                       float(np.sqrt(2.0 * self.U_c * energy[k] / M)), M)
         if np.any(out[0] != _OK):
             raise RuntimeError("rough-surface solver did not converge (please report)")
         return out
@@ -768,14 +825,46 @@ class RoughSurface:
         dummy = self._hertz_dummy(unloading)
         s_start = 0.0 if g.kind == 0 else 0.5 * (g.s_lo + g.s_hi)
         hz = np.zeros((10, n))
-        run = _gw_impacts if n >= 4 else _gw_impacts_serial
-        run(dummy, g, energy, np.full(n, s_start), True, 0.0, False, hz)
+        if n >= 4:
+            def run(*args):
+                return run_parallel(_gw_impacts, _gw_impacts_serial, *args)
+        else:
+            run = _gw_impacts_serial
+        self._check_gw_energy(energy, M)
+        # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
+        # (a/R = 1) means the impact itself is past it
+        w_end = fw.forward_limit(self.eps_y, self.nu, True)
+        run(dummy, g, energy, np.full(n, s_start), True, HERTZ_CAP * w_end, True, hz)
+        if np.any(hz[0] == _NEEDS_TABLE):
+            k = int(np.flatnonzero(hz[0] == _NEEDS_TABLE)[0])
+            raise ValueError(f"the impact at V1 = {float(np.sqrt(2.0 * self.U_c * energy[k] / M))!r} m/s (M = {M!r} "
+                             f"kg) drives summits to a w* that {interference_limit_message(w_end * 1.5, self.eps_y, self.nu, True)}"
+                             f". The height distribution (sigma = {self.sigma!r} m) is integrated until its tail "
+                             "is negligible; a pdf with bounded support (GreenwoodWilliamson(pdf=..., "
+                             "support=...)) truncates it")
         if np.any(hz[0] != _OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         s0 = hz[1].copy()
         return self._solve_growing_table(
             lambda data, w_cap, at_limit, out: run(data, g, energy, s0, False, w_cap, at_limit, out),
             10, 1.5 * float(hz[2].max()), energy, unloading, extrapolate, M)
+
+    def _check_gw_energy(self, energy, M):
+        """Gaussian heights: an impact so light that the flat stops where the height density
+        underflows (s = z/sigma > S_UNDERFLOW) is outside what the statistical model resolves."""
+        g = self._gwdata
+        if g.kind != 0:
+            return
+        buf = np.empty(7)
+        _gw_integrals(self._hertz_dummy("jcg"), g, S_UNDERFLOW, True, False, 0.0, buf)
+        low = g.n_total * buf[0]  # Hertz G at s_d = S_UNDERFLOW (JG's G is the same there or larger)
+        if np.any(energy < low):
+            k = int(np.flatnonzero(energy < low)[0])
+            raise ValueError(
+                f"the impact at V1 = {float(np.sqrt(2.0 * self.U_c * energy[k] / M))!r} m/s is too light for "
+                f"the statistical model: the flat would stop more than {S_UNDERFLOW:g} sigma above the "
+                f"mean summit plane, where the Gaussian height density exp(-s^2/2) is below 1e-281 (N = "
+                f"{g.n_total:.4g} summits); (V1/V_c)^2 = {float(energy[k])!r} must be >= {low:.4g}")
 
     def _assemble(self, v, M, energy, raw, code):
         if self.kind == "explicit":
@@ -917,13 +1006,20 @@ def sweep(surfaces, V1, M, unloading="jcg", extrapolate=False, factory=surface_f
         in fixed blocks, so thread counts do not change the result).
     """
     surfaces = list(surfaces)
-    if np.ndim(M) == 0:
-        masses = [float(M)] * len(surfaces)
+    Ma = as_float_array(M, "M")
+    if Ma.ndim == 0:
+        masses = [float(Ma)] * len(surfaces)
     else:
-        masses = [float(m) for m in M]
-        if len(masses) != len(surfaces):
+        masses = [float(m) for m in Ma.ravel()]
+        if Ma.ndim != 1 or len(masses) != len(surfaces):
             raise ValueError(f"M has {len(masses)} values for {len(surfaces)} surfaces")
-    v = np.asarray(V1, dtype=np.float64)
+    for m in masses:
+        check_finite_positive(m, "M", "(kg, mass of the flat)")
+    v = as_float_array(V1, "V1")
+    unloading_code(unloading)
+    check_bool(extrapolate, "extrapolate")
+    if not callable(factory):
+        raise TypeError("factory must be a callable building a RoughSurface from a dict")
     specs = []
     for s in surfaces:
         if isinstance(s, RoughSurface):
@@ -985,13 +1081,25 @@ def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
     from .unloading import restitution_kernel
 
     model = unloading_code(unloading)
-    ip = Impact(material, float(R_a), mass=float(M))
+    if not isinstance(material, Material):
+        raise TypeError(f"material must be a fastrest.Material, got {type(material).__name__}")
+    R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
+    M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
+    V1 = float(check_finite_positive(real_scalar(V1, "V1"), "V1", "(m/s)"))
+    if not as_float_array(heights, "heights").size:
+        raise ValueError("heights is empty: a surface needs at least one summit")
+    try:
+        ip = Impact(material, R_a, mass=M)
+    except ValueError as exc:
+        raise ValueError(f"R_a = {R_a!r} m, M = {M!r} kg: {exc}") from None
     eps, nu, wc = float(ip.eps_y), float(ip.nu), ip.omega_c
     z = np.asarray(heights, dtype=np.float64).ravel()
     z_top = float(z.max())
     h = (z - z_top) / wc
     v1_star = float(V1) / ip.V_c
-    energy = v1_star**2
+    energy = v1_star**2 if v1_star < 1e150 else math.inf
+    if not (math.isfinite(energy) and energy >= sys.float_info.min):
+        raise ValueError(f"V1 = {V1!r} m/s with M = {M!r} kg: (V1/V_c)^2 = {energy!r} must be a finite, normal double")
 
     def excess(x):
         return sum(f_star_kernel(hi + x, eps, nu) for hi in h if hi + x > 0.0) - energy
@@ -1001,7 +1109,8 @@ def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
     x_hi = energy**0.4
     while excess(x_hi) < 0.0:
         if x_hi >= OMEGA_M_STAR_MAX:
-            raise ValueError(f"V1 = {V1!r} m/s drives summits past w* = {OMEGA_M_STAR_MAX:g}")
+            raise ValueError(f"V1 = {V1!r} m/s (M = {M!r} kg, R_a = {R_a!r} m) drives summits past "
+                             f"w* = {OMEGA_M_STAR_MAX:g}")
         x_hi = min(2.0 * x_hi, OMEGA_M_STAR_MAX)
     x = brentq(excess, 0.0, x_hi, xtol=1e-300, rtol=1e-15, maxiter=1000)
     f_sum = p_sum = l_sum = 0.0

@@ -29,12 +29,14 @@ import numba as nb
 import numpy as np
 
 from . import _hdf5, _tablefile
-from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check_nu, check_eps_y, real_scalar,
+from ._threads import run_parallel
+from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, EDGE_TOL, check_count, check_nu,
+                          check_eps_y, real_scalar,
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
 from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
 from .critical import c_of_nu
-from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows, jg_nodes
+from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, _fast_scalar, hertz_rows, jg_nodes
 from .direct import impact_array
 from .limits import raise_out_of_range, v1_star_limit
 from .energy import F_SWITCH, GL_ORDER, PANEL_WIDTH, V_SWITCH, jg_integral, omega_m_sorted_kernel
@@ -105,28 +107,29 @@ def grid_key(grid):
     return f"v{_hdf5.FORMAT_VERSION}-{hashlib.sha256(blob.encode()).hexdigest()[:16]}"
 
 
+#: Bounds of a table's grid (checked before anything is allocated): counts, eps_y (tables;
+#: past 0.1 the law ends, a/R = 1, close to the Hertz range), the s-axis map rate (expm1 of it), bytes.
+GRID_COUNTS = {"n_eps_y": (6, 4096), "n_nu": (6, 256), "n_eps_y_energy": (2, 4096),
+               "bits_per_octave": (1, 10), "fine_bits_per_octave": (1, 10)}
+TABLE_EPS_Y = (1e-6, 0.1)
+MAP_RATE_MAX = 1000.0
+TABLE_BYTES_MAX = 4 * 2**30
+
+
 def normalise_grid(grid=None, **overrides):
     """Fill in defaults and validate a grid specification; returns a plain dict."""
+    if grid is not None and not isinstance(grid, dict):
+        raise TypeError(f"grid must be a dict of grid parameters or None, got {type(grid).__name__}")
     g = dict(DEFAULT_GRID)
     g.update(grid or {})
     g.update(overrides)
     unknown = set(g) - set(DEFAULT_GRID)
     if unknown:
         raise ValueError(f"unknown grid parameter(s) {sorted(unknown)}; valid: {sorted(DEFAULT_GRID)}")
-    for k in ("n_eps_y", "n_nu", "n_eps_y_energy", "bits_per_octave", "fine_bits_per_octave"):
-        x = real_scalar(g[k], k)
-        if not x.is_integer():
-            raise ValueError(f"{k} must be a whole number; got {g[k]!r}")
-        g[k] = int(x)
+    for k, (lo, hi) in GRID_COUNTS.items():
+        g[k] = check_count(g[k], k, lo, hi)
     for k in ("eps_y_min", "eps_y_max", "nu_min", "nu_max", "c_eps_y_map_rate", "fine_v1_star_max"):
         g[k] = real_scalar(g[k], k)
-    for k, m in (("n_eps_y", STENCIL_EPS), ("n_nu", STENCIL_NU), ("n_eps_y_energy", 2)):
-        if g[k] < m:
-            raise ValueError(f"{k} must be >= {m} (the interpolation stencil's size); got {g[k]}")
-    for k in ("bits_per_octave", "fine_bits_per_octave"):
-        g[k] = int(g[k])
-        if not 1 <= g[k] <= 10:
-            raise ValueError(f"{k} must be in [1, 10]; got {g[k]}")
     g["eps_y_blocks"] = _normalise_blocks(g["eps_y_blocks"])
     g["fine_v1_star_max"] = float(g["fine_v1_star_max"])
     m, _ = math.frexp(g["fine_v1_star_max"])
@@ -135,15 +138,27 @@ def normalise_grid(grid=None, **overrides):
                          f"[1, 2^20]; got {g['fine_v1_star_max']}")
     for k in ("eps_y_min", "eps_y_max", "nu_min", "nu_max", "c_eps_y_map_rate"):
         g[k] = float(g[k])
-    if not g["c_eps_y_map_rate"] >= 0:
-        raise ValueError(f"c_eps_y_map_rate must be >= 0; got {g['c_eps_y_map_rate']}")
-    check_eps_y(g["eps_y_min"], "eps_y_min")
+    if not 0.0 <= g["c_eps_y_map_rate"] <= MAP_RATE_MAX:
+        raise ValueError(f"c_eps_y_map_rate must be in [0, {MAP_RATE_MAX:g}]; got {g['c_eps_y_map_rate']}")
+    for k in ("eps_y_min", "eps_y_max"):
+        if not TABLE_EPS_Y[0] <= g[k] <= TABLE_EPS_Y[1]:
+            raise ValueError(f"{k} must be in [{TABLE_EPS_Y[0]:g}, {TABLE_EPS_Y[1]:g}] (the eps_y range "
+                             f"tables are built for; fastrest.direct and fastrest.curve take any eps_y > 0); got {g[k]!r}")
     check_nu(g["nu_min"], "nu_min")
     check_nu(g["nu_max"], "nu_max")
     if not g["eps_y_max"] > g["eps_y_min"]:
         raise ValueError("eps_y_max must be > eps_y_min")
     if not g["nu_max"] > g["nu_min"]:
         raise ValueError("nu_max must be > nu_min")
+    # a bound on the arrays before anything is allocated: cells <= 2^bits per octave over the
+    # at most 10 octaves of V1* from 1.9^1.25 to the largest speed of eps_y >= 1e-6
+    n_eps = max([g["n_eps_y"]] + [n for _, n in g["eps_y_blocks"]])
+    cells = 2 ** max(g["bits_per_octave"], g["fine_bits_per_octave"]) * 10
+    size = cells * n_eps * g["n_nu"] * 6 * len(QUANTITIES) * 8
+    if size > TABLE_BYTES_MAX:
+        raise ValueError(f"this grid would need up to {size / 2**30:.3g} GiB of table arrays (n_eps_y = {n_eps}, "
+                         f"n_nu = {g['n_nu']}, 2^{max(g['bits_per_octave'], g['fine_bits_per_octave'])} cells "
+                         f"per octave); the limit is {TABLE_BYTES_MAX / 2**30:g} GiB: use fewer nodes or cells")
     return g
 
 
@@ -151,18 +166,20 @@ def _normalise_blocks(blocks):
     """eps_y_blocks: [[V1*_end, n], ...]: cells ending at or below V1*_end (a power of two,
     increasing) use n nodes in the mapped C(nu) eps_y (>= the stencil's 6); the rest n_eps_y."""
     out = []
+    if isinstance(blocks, (str, bytes, bytearray)) or (blocks and not isinstance(blocks, (list, tuple))):
+        raise TypeError(f"eps_y_blocks must be a list of [V1*_end, n_eps_y] pairs; got {blocks!r}")
     try:
-        pairs = [(float(v), float(n)) for v, n in (blocks or [])]
+        pairs = [(real_scalar(v, "eps_y_blocks"), real_scalar(n, "eps_y_blocks")) for v, n in (blocks or [])]
     except (TypeError, ValueError):
         raise ValueError(f"eps_y_blocks must be a list of [V1*_end, n_eps_y] pairs; got {blocks!r}") from None
-    if not all(n.is_integer() for _, n in pairs):
+    if not all(math.isfinite(n) and n.is_integer() for _, n in pairs):
         raise ValueError(f"eps_y_blocks: node counts must be whole numbers; got {blocks!r}")
     pairs = [(v, int(n)) for v, n in pairs]
     for v, n in pairs:
         if not (math.frexp(v)[0] == 0.5 and 2.0 <= v <= 2.0**20) or (out and v <= out[-1][0]):
             raise ValueError(f"eps_y_blocks: each V1*_end must be a power of two in [2, 2^20], increasing; got {v}")
-        if n < STENCIL_EPS:
-            raise ValueError(f"eps_y_blocks: n_eps_y must be >= {STENCIL_EPS} (the stencil); got {n}")
+        if not STENCIL_EPS <= n <= GRID_COUNTS["n_eps_y"][1]:
+            raise ValueError(f"eps_y_blocks: n_eps_y must be in [{STENCIL_EPS}, {GRID_COUNTS['n_eps_y'][1]}]; got {n}")
         out.append([v, n])
     return out
 
@@ -309,12 +326,12 @@ def generate(grid=None, progress=None):
     w_star = np.empty((eps_w.size, nus.size, omega.size))
     for b, i in jobs:
         if b is None:  # W* = 1 - F at eps_w[i]
-            _generate_row(np.full(nus.size, eps_w[i]), nus, nodes[:0].ravel(), omega,
-                          np.empty((len(QUANTITIES), nus.size, 0)), w_star[i])
+            run_parallel(_generate_row, None, np.full(nus.size, eps_w[i]), nus, nodes[:0].ravel(), omega,
+                         np.empty((len(QUANTITIES), nus.size, 0)), w_star[i])
             continue
         flat = nodes[b["cell0"]:b["cstop"]].ravel()
         out = np.empty((len(QUANTITIES), nus.size, flat.size))
-        _generate_row(b["eps_y"][i], nus, flat, omega[:0], out, np.empty((nus.size, 0)))
+        run_parallel(_generate_row, None, b["eps_y"][i], nus, flat, omega[:0], out, np.empty((nus.size, 0)))
         b["values"][:, i] = share_edges(out.reshape(out.shape[:2] + (-1, DEGREE + 1)))
     v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
     return dict(grid=g, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=layout["base_fine"],
@@ -385,7 +402,8 @@ def table_value(tab, q, v, eps_y, nu):
     """
     if not (q >= 0 and q < tab.n_quantities):
         return np.nan
-    return _interpolate(tab, q, v, eps_y, nu, True)
+    # float32 and integer inputs, as the Python API takes them
+    return _interpolate(tab, q, np.float64(v), np.float64(eps_y), np.float64(nu), True)
 
 
 @nb.njit(cache=True, inline="always")
@@ -398,8 +416,14 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
          tab.xi0, tab.nu0, tab.inv_h_nu, tab.n_nu)
     s_rate = tab.s_rate
     split = (tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
-    if not (eps_y >= eps_lo and eps_y <= eps_hi and nu >= nu_lo and nu <= nu_hi):
+    # a material a few ulp outside an edge (0.001 + 0.0005 * 18 = 0.010000000000000002) is at
+    # the edge: clamped there, never extrapolated further
+    e_lo, e_hi, n_lo, n_hi = eps_lo, eps_hi, nu_lo, nu_hi
+    if not (eps_y >= e_lo * (1.0 - EDGE_TOL) and eps_y <= e_hi * (1.0 + EDGE_TOL)
+            and nu >= n_lo * (1.0 - EDGE_TOL) and nu <= n_hi * (1.0 + EDGE_TOL)):
         return np.nan
+    eps_y = min(max(eps_y, e_lo), e_hi)
+    nu = min(max(nu, n_lo), n_hi)
     if not v > V_SWITCH:
         if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
             r = cell_polynomial(hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
@@ -565,6 +589,12 @@ class Table:
         self.attrs = attrs or {}
         self.path = path
 
+    # the compiled entry point does not pickle: dropped, rebuilt on the first scalar call
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        state["_entry"] = None
+        return state
+
     def __repr__(self):
         g = self.grid
         return (f"Table(eps_y=[{g['eps_y_min']}, {g['eps_y_max']}] x {g['n_eps_y']}, "
@@ -575,8 +605,10 @@ class Table:
         """One point from Python floats: the kernel's compiled entry point (~1 us instead of ~30 us
         through the array machinery); anything unusual (NaN result, outside the validated range,
         which warns) goes the checked array way."""
-        if (type(v1_star) is float and type(eps_y) is float and type(nu) is float
-                and EPS_Y_VALIDATED[0] <= eps_y <= EPS_Y_VALIDATED[1] and NU_VALIDATED[0] <= nu <= NU_VALIDATED[1]):
+        v, e, n = _fast_scalar(v1_star), _fast_scalar(eps_y), _fast_scalar(nu)
+        if (v is not None and e is not None and n is not None
+                and EPS_Y_VALIDATED[0] <= e <= EPS_Y_VALIDATED[1] and NU_VALIDATED[0] <= n <= NU_VALIDATED[1]):
+            v1_star, eps_y, nu = v, e, n
             if self._entry is None:
                 self._entry = _entry_point(table_value, (nb.typeof(self.data), nb.int64, nb.float64,
                                                           nb.float64, nb.float64))
@@ -590,8 +622,10 @@ class Table:
         out = np.empty(v.size)
         if v.size == 0:
             return shaped(out, shape)
-        kernel = _table_array_parallel if v.size >= PARALLEL_MIN_POINTS else _table_array
-        kernel(self.data, q, v, e, n, out)
+        if v.size >= PARALLEL_MIN_POINTS:
+            run_parallel(_table_array_parallel, _table_array, self.data, q, v, e, n, out)
+        else:
+            _table_array(self.data, q, v, e, n, out)
         bad = np.isnan(out)
         if bad.any():
             self._raise(v[bad], e[bad], n[bad])
