@@ -259,7 +259,8 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
     warn_if_outside_validated(eps_y, nu)
     if not (math.isfinite(w_max) and w_max >= 0.0):
         raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
-    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model))  # the unloading model may end first
+    extrapolate = check_bool(extrapolate, "extrapolate")
+    lim = float(w_upper_model(eps_y, nu, extrapolate, model))  # the unloading model may end first
     if w_max > lim:
         raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max", unloading)
     C, B = float(c_of_nu(nu)), float(area_exponent(eps_y))
