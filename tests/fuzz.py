@@ -295,12 +295,18 @@ def classify(case, targets):
 def _child(level, start):
     """Run cases from ``start``; one JSON line per case (flushed, so a crash loses nothing)."""
     os.environ.setdefault("MPLBACKEND", "Agg")
+    # the records go to a private copy of stdout; what the cases themselves print (the CLI's
+    # tables, a line without its newline) goes to /dev/null and cannot merge into a record
+    out = os.fdopen(os.dup(1), "w")
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 1)
+    sys.stdout = open(os.devnull, "w")
     cases = build_cases(level)
     targets = {n: (p, f) for n, p, f in _targets()}
     for i in range(start, len(cases)):
-        print(json.dumps({"i": i, "start": True}), flush=True)
+        print(json.dumps({"i": i, "start": True}), file=out, flush=True)
         outcome, detail = classify(cases[i], targets)
-        print(json.dumps({"i": i, "outcome": outcome, "detail": detail}), flush=True)
+        print(json.dumps({"i": i, "outcome": outcome, "detail": detail}), file=out, flush=True)
 
 
 def _complete_lines(text):
