@@ -445,8 +445,13 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     check = check_limit and v > v_safe
     if check and eps_y > EPS_Y_AR_BINDS:  # the law may end (a/R = 1) before w* = 425
         w_lim = min(w_lim, omega_star_limit_kernel(eps_y, nu) * (1.0 + OMEGA_LIMIT_TOL))
-    # one call site of the (inlined) stencil sum: passes over (w_m* for the limit check, then q)
-    # and over (this block, the previous one for a blended cell); inlined copies cost compile time
+    if not (blend or (check and q != 0)):  # the common case, straight-line
+        r = _block_value(g, q, b, cell, u, xi, nu)
+        if check and not r <= w_lim:
+            return np.nan
+        return r
+    # otherwise one more call site of the (inlined) stencil sum, in loops: passes over (w_m* for
+    # the limit check, then q) and over (this block, the previous one for a blended cell)
     r = np.nan
     for p in range(2 if check and q != 0 else 1):
         qq = 0 if p == 0 and check and q != 0 else q
