@@ -338,8 +338,11 @@ def run(level="quick", case_timeout=300.0, log=None):
                     done = True
                 except subprocess.TimeoutExpired:
                     done = False
-                f.seek(0)
-                lines = _complete_lines(f.read())
+                # pread: the child writes through the same open file, so moving its shared offset
+                # (seek + read) made the child overwrite its first records
+                fd = f.fileno()
+                raw = os.pread(fd, os.fstat(fd).st_size, 0)
+                lines = _complete_lines(raw.decode("utf-8", "replace"))
                 finished = {d["i"]: d for d in lines if "outcome" in d}
                 started = [d["i"] for d in lines if d.get("start")]
                 cur = max(started) if started else None
