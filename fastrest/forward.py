@@ -53,7 +53,7 @@ from ._validation import (OMEGA_M_STAR_MAX, check_bool, check_count, check_eps_y
                           warn_if_outside_validated)
 from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, p_star_jg
 from .energy import F_SWITCH, jg_integral
-from .limits import raise_interference_out_of_range, w_upper, w_upper_model
+from .limits import omega_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial, share_edges)
 from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
@@ -221,7 +221,7 @@ def forward_limit(eps_y, nu, extrapolate=False):
     """Largest w* a :class:`ForwardData` may serve: 425 (JGM's range) or, extrapolating, a/R = 1."""
     eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))
     nu = float(check_nu(real_scalar(nu, "nu")))
-    return float(w_upper(eps_y, nu, check_bool(extrapolate, "extrapolate")))
+    return omega_limit(eps_y, nu, check_bool(extrapolate, "extrapolate"))
 
 
 def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,

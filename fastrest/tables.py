@@ -34,8 +34,9 @@ from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, EDGE_
                           check_eps_y, real_scalar,
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
-from .contact import W_SWITCH, area_exponent, broadcast_inputs, c_of_nu, omega_star_limit_kernel, shaped
+from .contact import W_SWITCH, area_exponent, broadcast_inputs, omega_star_limit_kernel, shaped
 from .critical import c_of_nu
+from .materials import poisson_factor
 from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, _fast_scalar, hertz_rows, jg_nodes
 from .direct import impact_array
 from .limits import raise_out_of_range, v1_star_limit
@@ -227,9 +228,7 @@ def yield_parameter(eps_y, nu):
     remaining dependence on nu is very smooth, where on an (eps_y, nu) grid both axes carry the
     fast variation of cos(pi a/R) at large w* (bench/RESULTS.md compares grids).
     """
-    nu = np.asarray(nu, dtype=np.float64)
-    c = c_of_nu(float(nu)) if nu.ndim == 0 else c_of_nu(np.ascontiguousarray(nu).ravel()).reshape(nu.shape)
-    return c * eps_y
+    return poisson_factor(nu) * eps_y
 
 
 def xi_range(g):

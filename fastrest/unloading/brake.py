@@ -18,7 +18,6 @@ checked against its published test data (tests/test_contact_law.py), not re-deri
 import math
 
 from .._jit import jit
-from ..contact import W_SWITCH
 from . import elastic
 
 NAME = "brake"
@@ -35,16 +34,10 @@ CELLS_END = math.inf  # curves may tabulate up to the loading law's end
 @jit(inline=True)
 def residual(wm, wm1, p, eps_y, nu):
     """(w_res*, w_m* - w_res*) after loading to w_m* (p = P_m*)."""
-    if wm <= W_SWITCH:
-        return 0.0, wm  # Hertz loading: elastic unloading along the same curve
-    delta = p / math.sqrt(wm)
-    return wm - delta, delta
+    return elastic.area_residual(wm, p, wm)
 
 
 @jit(inline=True)
 def restitution(f, wm, wm1, p, eps_y, nu):
     """(e^2, 1 - e^2, w_res*, delta, R_res/R) for loading energy f = F(w_m*) = V1*^2 (f > 1)."""
-    if wm <= W_SWITCH:
-        return 1.0, 0.0, 0.0, wm, 1.0  # Hertz loading and unloading: e = 1 exactly
-    w_res, delta = residual(wm, wm1, p, eps_y, nu)
-    return elastic.restitution(f, p, w_res, delta)
+    return elastic.area_restitution(f, wm, p, wm)

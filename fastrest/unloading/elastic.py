@@ -16,8 +16,10 @@ w_res* (and so delta) from the maximum point; these functions take delta from it
 import math
 
 from .._jit import jit
+from ..contact import W_SWITCH
 
-__all__ = ["force", "returned_energy", "residual_radius_ratio", "restitution"]
+__all__ = ["force", "returned_energy", "residual_radius_ratio", "restitution", "area_residual",
+           "area_restitution"]
 
 
 @jit(inline=True)
@@ -62,3 +64,23 @@ def restitution(f, p_max, w_res, delta):
     its own)."""
     e2 = p_max * delta / f
     return e2, 1.0 - e2, w_res, delta, residual_radius_ratio(p_max, delta)
+
+
+@jit(inline=True)
+def area_residual(wm, p_max, area):
+    """(w_res*, delta) when the elastic recovery is set by the contact area A* at maximum load,
+    delta = P_m* / sqrt(A_m*) (Etsion's eq 33 with the JG area; Brake's rule with A* = w_m*).
+    Under Hertz loading (w_m* <= 1.9) unloading retraces loading: w_res* = 0, delta = w_m*."""
+    if wm <= W_SWITCH:
+        return 0.0, wm
+    delta = p_max / math.sqrt(area)
+    return wm - delta, delta
+
+
+@jit(inline=True)
+def area_restitution(f, wm, p_max, area):
+    """:func:`restitution` for an :func:`area_residual` model; e = 1 exactly under Hertz loading."""
+    if wm <= W_SWITCH:
+        return 1.0, 0.0, 0.0, wm, 1.0
+    w_res, delta = area_residual(wm, p_max, area)
+    return restitution(f, p_max, w_res, delta)
