@@ -29,6 +29,7 @@ import numba as nb
 import numpy as np
 
 from . import _hdf5, _tablefile
+from ._jit import compiled_entry
 from ._threads import run_parallel
 from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, EDGE_TOL, check_count, check_nu,
                           check_eps_y, real_scalar,
@@ -534,14 +535,6 @@ def _hertz_table_rows(n_models):
     return np.ascontiguousarray(np.concatenate([rows[0][0]] + [r[k] for r in rows for k in (1, 2)]))
 
 
-def _entry_point(kernel, sig):
-    """The compiled C entry point of ``kernel`` for ``sig``: skips the dispatcher's type resolution
-    (which for a namedtuple of arrays costs microseconds); the dispatcher itself if unavailable."""
-    kernel.compile(sig)
-    cres = kernel.overloads.get(tuple(sig))
-    return getattr(cres, "entry_point", None) or kernel
-
-
 #: Batches at least this large use all cores (the threads' start-up costs ~10 us).
 PARALLEL_MIN_POINTS = 20000
 
@@ -614,7 +607,7 @@ class Table:
                 and EPS_Y_VALIDATED[0] <= e <= EPS_Y_VALIDATED[1] and NU_VALIDATED[0] <= n <= NU_VALIDATED[1]):
             v1_star, eps_y, nu = v, e, n
             if self._entry is None:
-                self._entry = _entry_point(table_value, (nb.typeof(self.data), nb.int64, nb.float64,
+                self._entry = compiled_entry(table_value, (nb.typeof(self.data), nb.int64, nb.float64,
                                                           nb.float64, nb.float64))
             r = self._entry(self.data, q, v1_star, eps_y, nu)
             if r == r:
