@@ -129,6 +129,22 @@ def broadcast_named(*named):
                          "scalar, or arrays of equal or broadcastable shapes)") from None
 
 
+def broadcast_inputs(*named):
+    """Broadcast (array, name) pairs to flat contiguous float64 arrays; return (flat arrays, shape)."""
+    arrays = [as_float_array(a, n) for a, n in named]
+    shape = broadcast_named(*zip(arrays, (n for _, n in named)))
+    # broadcast_to + copy, not broadcast_arrays: its views warn (FutureWarning) when Numba reads
+    # their writeable flag
+    return [np.ascontiguousarray(a).ravel() if a.shape == shape else np.broadcast_to(a, shape).copy().ravel()
+            for a in arrays], shape
+
+
+def shaped(out, shape):
+    """Give a kernel's flat output the broadcast shape; 0-d becomes a Python float."""
+    out = out.reshape(shape)
+    return float(out) if out.ndim == 0 else out
+
+
 def check_finite_result(out, what, inputs):
     """ValueError unless every element of ``out`` is finite: a formula that overflows or
     underflows double precision says so instead of returning inf or NaN. ``inputs``: (name, value)

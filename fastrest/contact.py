@@ -19,7 +19,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ._validation import OMEGA_STAR_SWITCH, as_float_array, broadcast_named, check_eps_y, check_finite_result, check_nu
+from ._validation import OMEGA_STAR_SWITCH, broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
 from .critical import c_of_nu
 
 W_SWITCH = OMEGA_STAR_SWITCH
@@ -107,22 +107,6 @@ def _a_star_array(w, eps_y, nu, out):
             out[i] = a_star_kernel(w[i], eps_y[i], nu[i])
         else:
             out[i] = np.nan
-
-
-def broadcast_inputs(*named):
-    """Broadcast (array, name) pairs to flat contiguous float64 arrays; return (flat arrays, shape)."""
-    arrays = [as_float_array(a, n) for a, n in named]
-    shape = broadcast_named(*zip(arrays, (n for _, n in named)))
-    # broadcast_to + copy, not broadcast_arrays: its views warn (FutureWarning) when Numba reads
-    # their writeable flag
-    return [np.ascontiguousarray(a).ravel() if a.shape == shape else np.broadcast_to(a, shape).copy().ravel()
-            for a in arrays], shape
-
-
-def shaped(out, shape):
-    """Give a kernel's flat output the broadcast shape; 0-d becomes a Python float."""
-    out = out.reshape(shape)
-    return float(out) if out.ndim == 0 else out
 
 
 def check_omega(w, eps_y, nu, name="w"):

@@ -19,7 +19,7 @@ import numpy as np
 
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_bool, check_eps_y, check_nu,
                           check_velocity, warn, warn_if_outside_validated)
-from .contact import broadcast_inputs, shaped
+from ._validation import broadcast_inputs, shaped
 from .energy import V_SWITCH, omega_m_kernel
 from .limits import raise_out_of_range, v1_star_limit, w_upper_model
 from .unloading import get as unloading_model, restitution_kernel

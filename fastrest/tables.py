@@ -35,7 +35,8 @@ from ._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, EDGE_
                           check_eps_y, real_scalar,
                           check_velocity, warn_if_outside_validated)
 from ._version import __version__
-from .contact import W_SWITCH, area_exponent, broadcast_inputs, omega_star_limit_kernel, shaped
+from .contact import W_SWITCH, area_exponent, omega_star_limit_kernel
+from ._validation import broadcast_inputs, shaped
 from .critical import c_of_nu
 from .materials import poisson_factor
 from .curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, _fast_scalar, hertz_rows, jg_nodes
