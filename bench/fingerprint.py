@@ -56,7 +56,7 @@ def dump(path):
         law = fastrest.contact_law(0.005, 0.33, m, w_max=400.0)
         w = np.concatenate([np.linspace(0, 300, 700), np.linspace(300, 0, 700)])
         out[f"force_{m}"] = law.force(w)
-        out[f"force_impact_{m}"] = np.array([law.impact(x, 400)["e"] for x in (1.5, 10.0, 100.0)])
+        out[f"force_impact_{m}"] = np.array([law.impact(x, steps_per_contact=400)["e"] for x in (1.5, 10.0, 100.0)])
         imp = fastrest.Impact(steel, 0.01, alu)
         out[f"impact_{m}"] = np.array([imp.e(x, unloading=m) for x in (0.05, 0.5, 5.0)])
     out["table_w"] = fastrest.omega_m_star(v, eps, nu)

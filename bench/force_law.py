@@ -109,7 +109,7 @@ def cost(cfg, log):
     frac = {"gap (w <= 0)": float(np.mean(w <= 0)), "Hertz (0 < w <= 1.9)": float(np.mean((w > 0) & (w <= 1.9))),
             "beyond 1.9": float(np.mean(w > 1.9))}
     law = laws["jcg"]
-    imp = {f"V1* = {v:g}": interleaved({"impact": (lambda v=v: law.impact(v, STEPS_1E8), 1)}, cfg["rounds"])["impact"]
+    imp = {f"V1* = {v:g}": interleaved({"impact": (lambda v=v: law.impact(v, steps_per_contact=STEPS_1E8), 1)}, cfg["rounds"])["impact"]
            for v in (1.5, 30.0)}
     log(f"  contact_force / hertz: {t['contact_force (jcg)'].ratio:.2f}")
     return t, frac, imp
@@ -130,7 +130,7 @@ def convergence(cfg, log):
                     ref = c.e(v)
                     for j, n in enumerate(steps):
                         try:
-                            err = abs(law.impact(v, n, locate)["e"] / ref - 1)
+                            err = abs(law.impact(v, steps_per_contact=n, locate_switch=locate)["e"] / ref - 1)
                         except ValueError:  # a coarse step overshoots w_m* = 425 at the limit speed
                             err = math.inf
                         worst[j] = max(worst[j], err)

@@ -13,7 +13,8 @@ import importlib
 
 from ._version import __version__
 from ._validation import ValidityWarning, ExtrapolationWarning
-from .materials import Material, Impact, poisson_factor, critical_velocity_ratios
+from .materials import Material, poisson_factor, critical_velocity_ratios
+from .impact import Impact
 from .contact import P_star, A_star, omega_star_limit
 from .energy import W_star, loading_energy
 from . import direct

@@ -52,7 +52,7 @@ def _cmd_e(args):
     crit = imp.critical_values()
     V = np.asarray(args.V, dtype=float)
     try:
-        v1 = imp.v1_star(V, args.extrapolate, "jcg")  # every model is printed; JCG ends first
+        v1 = imp.v1_star(V, "jcg", extrapolate=args.extrapolate)  # every model is printed; JCG ends first
     except ValueError as exc:
         msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
         raise ValueError(f"--V: {msg}") from None
@@ -249,7 +249,7 @@ def _cmd_warmup(args):
                       rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
                       .impact(1e-3, 1e-3)))
         step("contact law (force, impact)", lambda: (fastrest.contact_law(0.005, 0.33).force([0.5, 2.0, 1.0]),
-                                                     fastrest.contact_law(0.005, 0.33).impact(5.0, 200)))
+                                                     fastrest.contact_law(0.005, 0.33).impact(5.0, steps_per_contact=200)))
         step("comparison models", lambda: [fastrest.models.MODELS[m](5.0, 0.005, 0.33) for m in fastrest.models.MODELS])
     print(f"fastrest kernels ready in {time.perf_counter() - t0:.2f} s")
     return 0
@@ -259,7 +259,7 @@ def _warm_jit(c, s, t, e_curve, e_scene, e_table):
     """The fastrest.jit functions compile inside the caller's function; warm their callees."""
     import numba as nb
 
-    @nb.njit
+    @nb.njit  # not fastrest._jit.jit: a throwaway closure, nothing to cache
     def run(cd, sd, td):
         return e_curve(cd, 5.0) + e_scene(sd, 1, 5.0) + e_table(td, 5.0, 0.005, 0.33, 0)
 

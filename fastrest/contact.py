@@ -16,9 +16,9 @@ Kernels are plain ``@njit`` functions of floats; the public functions below vali
 """
 import math
 
-import numba as nb
 import numpy as np
 
+from ._jit import jit
 from ._validation import OMEGA_STAR_SWITCH, broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
 from .critical import c_of_nu
 
@@ -26,13 +26,13 @@ W_SWITCH = OMEGA_STAR_SWITCH
 LN_SWITCH = math.log(W_SWITCH)
 
 
-@nb.njit(cache=True)
+@jit
 def area_exponent(eps_y):
     """B = 0.14 exp(23 eps_y), JGM eq (10)."""
     return 0.14 * math.exp(23.0 * eps_y)
 
 
-@nb.njit(cache=True)
+@jit
 def a_star_kernel(w, eps_y, nu):
     """A*(w): Hertz A* = w for w <= 1.9, JG eq (8) above."""
     if w <= W_SWITCH:
@@ -40,13 +40,13 @@ def a_star_kernel(w, eps_y, nu):
     return w * (w / W_SWITCH) ** area_exponent(eps_y)
 
 
-@nb.njit(cache=True)
+@jit
 def radius_ratio_kernel(w, eps_y, nu):
     """Contact radius over sphere radius, a/R = (pi C eps_y/2) sqrt(A*)."""
     return 0.5 * math.pi * c_of_nu(nu) * eps_y * math.sqrt(a_star_kernel(w, eps_y, nu))
 
 
-@nb.njit(cache=True)
+@jit
 def p_star_jg(w, eps_y, nu, C, B):
     """JG branch of P*(w) (eq 9) with C and B precomputed, for w >= 1.9.
 
@@ -62,7 +62,7 @@ def p_star_jg(w, eps_y, nu, C, B):
             + 4.0 * hg / C * (-math.expm1(-math.exp(lw * (5.0 / 9.0)) / 25.0)) * w)
 
 
-@nb.njit(cache=True)
+@jit
 def p_star_kernel(w, eps_y, nu):
     """P*(w): Hertz w^1.5 for w <= 1.9 (eq 14), JG eq (9) above; NaN past a/R = 1 or for w < 0."""
     if not w >= 0.0:
@@ -74,7 +74,7 @@ def p_star_kernel(w, eps_y, nu):
     return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
 
 
-@nb.njit(cache=True)
+@jit
 def p_star_unchecked(w, eps_y, nu):
     """P*(w) without the a/R < 1 check (for callers that bound w themselves)."""
     if w <= W_SWITCH:
@@ -82,7 +82,7 @@ def p_star_unchecked(w, eps_y, nu):
     return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
 
 
-@nb.njit(cache=True)
+@jit
 def omega_star_limit_kernel(eps_y, nu):
     """The w* at which a/R reaches 1 (the JG law's end, eq 12); inf-free for eps_y > 0."""
     C = c_of_nu(nu)
@@ -94,13 +94,13 @@ def omega_star_limit_kernel(eps_y, nu):
     return math.exp((math.log(a_lim) + B * math.log(W_SWITCH)) / (1.0 + B))
 
 
-@nb.njit(cache=True)
+@jit
 def _p_star_array(w, eps_y, nu, out):
     for i in range(w.size):
         out[i] = p_star_kernel(w[i], eps_y[i], nu[i])
 
 
-@nb.njit(cache=True)
+@jit
 def _a_star_array(w, eps_y, nu, out):
     for i in range(w.size):
         if w[i] >= 0.0 and radius_ratio_kernel(w[i], eps_y[i], nu[i]) < 1.0:

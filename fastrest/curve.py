@@ -219,7 +219,7 @@ def build_curve_data(eps_y, nu, unloading="jcg", v_max=None, extrapolate=False,
     unit = _unloading.get(unloading)
     model = unit.code
     w_hi = w_upper_model(eps_y, nu, extrapolate, model)
-    limit = v1_star_limit(eps_y, nu, extrapolate, unloading)
+    limit = v1_star_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
     if v_max is not None and v_max > limit:
         raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading)
     if unit.cells_end < w_hi:  # extrapolating towards an unloading model's end: stop short of it

@@ -14,9 +14,9 @@ with the same formulas up to the point where a/R = 1 and issues an
 """
 import math
 
-import numba as nb
 import numpy as np
 
+from ._jit import jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_bool, check_eps_y, check_nu,
                           check_velocity, warn, warn_if_outside_validated)
 from ._validation import broadcast_inputs, shaped
@@ -28,7 +28,7 @@ __all__ = ["omega_m_star", "e_star", "loss_star", "residual_star", "solve", "v1_
            "impact_kernel", "impact_array"]
 
 
-@nb.njit(cache=True)
+@jit
 def impact_kernel(v, eps_y, nu, model, extrapolate):
     """(w_m*, e, 1 - e^2, w_res*, R_res/R) for one impact; NaNs outside the domain."""
     w_hi = w_upper_model(eps_y, nu, extrapolate, model)
@@ -43,7 +43,7 @@ def impact_kernel(v, eps_y, nu, model, extrapolate):
     return wm, e, loss, w_res, r_res
 
 
-@nb.njit(cache=True)
+@jit
 def impact_array(v, eps_y, nu, model, extrapolate, out):
     """Batch driver: out[k, i] for k in (w_m*, e, loss, w_res*, R_res/R)."""
     for i in range(v.size):
@@ -73,7 +73,7 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     return out, shape
 
 
-def omega_m_star(v1_star, eps_y, nu, extrapolate=False):
+def omega_m_star(v1_star, eps_y, nu, *, extrapolate=False):
     """Normalised maximum interference w_m* = omega_m/omega_c, solving JGM eq (29).
 
     Parameters
@@ -97,7 +97,7 @@ def omega_m_star(v1_star, eps_y, nu, extrapolate=False):
     return shaped(out[0], shape)
 
 
-def e_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+def e_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38) with unloading (35) or (33).
 
     Parameters as :func:`omega_m_star`; ``unloading`` names the unloading model:
@@ -108,7 +108,7 @@ def e_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
     return shaped(out[1], shape)
 
 
-def loss_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+def loss_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Fraction of the impact energy dissipated, 1 - e^2 (-), computed without cancellation.
 
     Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9). Parameters as :func:`e_star`.
@@ -117,7 +117,7 @@ def loss_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
     return shaped(out[2], shape)
 
 
-def residual_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+def residual_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Residual state after the impact: (w_res*, R_res/R), JGM eqs (33)-(36).
 
     w_res* = omega_res/omega_c (-) and R_res/R (-), each broadcast over the inputs.
@@ -127,7 +127,7 @@ def residual_star(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
     return shaped(out[3], shape), shaped(out[4], shape)
 
 
-def solve(v1_star, eps_y, nu, unloading="jcg", extrapolate=False):
+def solve(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Everything at once: dict of w_m*, e, loss (1 - e^2), w_res*, R_res/R (one solve)."""
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     keys = ("omega_m_star", "e", "loss", "omega_res_star", "R_res_ratio")

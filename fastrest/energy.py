@@ -13,9 +13,9 @@ on ln F(w) = 2 ln V1* in ln w, with slope d ln F / d ln w = (5/2) w P*(w) / F(w)
 """
 import math
 
-import numba as nb
 import numpy as np
 
+from ._jit import jit
 from .contact import W_SWITCH, area_exponent, c_of_nu, evaluate_law, p_star_jg
 
 #: Gauss-Legendre order per panel and the widest panel in ln w; chosen by measurement against
@@ -27,7 +27,7 @@ F_SWITCH = W_SWITCH**2.5  # F(1.9)
 V_SWITCH = W_SWITCH**1.25  # V1* at which w_m = 1.9
 
 
-@nb.njit(cache=True)
+@jit
 def jg_integral(w0, w1, eps_y, nu, C, B):
     """int_{w0}^{w1} P*_JG(z) dz for 1.9 <= w0 <= w1, by Gauss-Legendre in ln z."""
     t0 = math.log(w0)
@@ -47,7 +47,7 @@ def jg_integral(w0, w1, eps_y, nu, C, B):
     return total
 
 
-@nb.njit(cache=True)
+@jit
 def f_star_kernel(w, eps_y, nu):
     """F(w) = V1*^2 that reaches maximum interference w (loading energy / U_c); NaN past a/R = 1."""
     if not w >= 0.0:
@@ -57,7 +57,7 @@ def f_star_kernel(w, eps_y, nu):
     return F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
 
 
-@nb.njit(cache=True)
+@jit
 def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
     """Solve ln F(w_m) = target (> ln F(1.9)) by Newton's method in t = ln w, from (w, f = F(w)).
 
@@ -88,7 +88,7 @@ def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
     return np.nan, w, f
 
 
-@nb.njit(cache=True)
+@jit
 def omega_m_kernel(v, eps_y, nu, w_hi):
     """w_m(V1*) solving F(w_m) = V1*^2 (eq 29); NaN if V1* < 0 or w_m would exceed w_hi.
 
@@ -113,7 +113,7 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
     return newton_from_below(2.0 * math.log(v), w, f, hi, eps_y, nu, C, B)[0]
 
 
-@nb.njit(cache=True)
+@jit
 def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
     """w_m at increasing speeds v[0] <= v[1] <= ... (all > 1.9^1.25), marching one solution into the next.
 
@@ -131,7 +131,7 @@ def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
         out[i], w, f = newton_from_below(2.0 * math.log(v[i]), w, f, hi, eps_y, nu, C, B)
 
 
-@nb.njit(cache=True)
+@jit
 def _f_star_array(w, eps_y, nu, out):
     for i in range(w.size):
         out[i] = f_star_kernel(w[i], eps_y[i], nu[i])

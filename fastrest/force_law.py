@@ -245,7 +245,7 @@ class ContactLaw:
                                             self.extrapolate, "interference", self.unloading)
         return (out * self.P_c).reshape(x.shape)
 
-    def impact(self, v1_star, steps_per_contact=2000, locate_switch=True):
+    def impact(self, v1_star, *, steps_per_contact=2000, locate_switch=True):
         """e of one impact at V1* integrated in time with this law (:func:`impact_in_time`).
 
         Returns a dict: ``e``, ``omega_m_star`` (largest interference), ``steps``, and the final
@@ -270,7 +270,7 @@ class ContactLaw:
         return {"e": float(e), "omega_m_star": float(wm), "steps": int(steps), "state": state}
 
 
-def contact_law(eps_y, nu, unloading="jcg", w_max=None, extrapolate=False, *, omega_c=1.0, P_c=1.0):
+def contact_law(eps_y, nu, unloading="jcg", *, w_max=None, extrapolate=False, omega_c=1.0, P_c=1.0):
     """Build the time-domain :class:`ContactLaw` of one material (normalised: w = omega/omega_c,
     P* = P/P_c).
 

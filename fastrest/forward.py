@@ -46,12 +46,12 @@ loops); w = 0 gives 0.
 import math
 from collections import namedtuple
 
-import numba as nb
 import numpy as np
 
-from ._validation import (OMEGA_M_STAR_MAX, check_bool, check_count, check_eps_y, check_nu, real_scalar,
+from ._jit import jit
+from ._validation import (check_bool, check_count, check_eps_y, check_nu, real_scalar,
                           warn_if_outside_validated)
-from .contact import W_SWITCH, area_exponent, c_of_nu, omega_star_limit_kernel, p_star_jg
+from .contact import W_SWITCH, area_exponent, c_of_nu, p_star_jg
 from .energy import F_SWITCH, jg_integral
 from .limits import omega_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
@@ -80,7 +80,7 @@ f_rows: (ncell, 8) float64 rows [center, 1/half_width, c0..c5] of F on (1.9, w_t
 
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def _p_jg(data, w):
     """JG branch of P* (eq 9) for this material: :func:`fastrest.contact.p_star_jg`."""
     return p_star_jg(w, data.eps_y, 0.0, data.C, data.B)
@@ -88,7 +88,7 @@ def _p_jg(data, w):
 
 # --- scalar kernels (call these from @njit code) -----------------------------------------------
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def F_forward(data, w):
     """Loading energy to interference w over U_c, F(w) = 1 - (W_ep)*(w) (-); NaN outside [0, w_max]."""
     if w > W_SWITCH:
@@ -100,7 +100,7 @@ def F_forward(data, w):
     return np.nan
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def P_forward(data, w):
     """Contact force at interference w over P_c, P*(w) (JG law, eqs 9, 14); NaN outside [0, w_max].
 
@@ -115,7 +115,7 @@ def P_forward(data, w):
     return np.nan
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def P_table_forward(data, w):
     """P*(w) from the table (within ~1e-14 of :func:`P_forward`, ~7x cheaper above w = 1.9).
 
@@ -131,7 +131,7 @@ def P_table_forward(data, w):
     return np.nan
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def FP_table_forward(data, w):
     """(F(w), P*(w)) with P* from its table: one cell lookup for both (NaN outside [0, w_max]).
 
@@ -152,7 +152,7 @@ def FP_table_forward(data, w):
     return np.nan, np.nan
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def forward_values(data, w):
     """(F, P*, R, L) at interference w: loading energy, force, returned and dissipated energy.
 
@@ -175,13 +175,13 @@ def forward_values(data, w):
     return f, p, e2 * f, loss * f
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def returned_forward(data, w):
     """Energy returned by elastic unloading from w over U_c, P*(w) (w - w_res*(w)); NaN outside [0, w_max]."""
     return forward_values(data, w)[2]
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def loss_forward(data, w):
     """Energy dissipated by loading to w and unloading, over U_c: F(w) - R(w) (0 for w <= 1)."""
     return forward_values(data, w)[3]
@@ -189,7 +189,7 @@ def loss_forward(data, w):
 
 # --- building ----------------------------------------------------------------------------------
 
-@nb.njit(cache=True)
+@jit
 def _p_nodes(nodes, eps_y, nu, out):
     C = c_of_nu(nu)
     B = area_exponent(eps_y)
@@ -197,7 +197,7 @@ def _p_nodes(nodes, eps_y, nu, out):
         out[i] = p_star_jg(nodes[i], eps_y, nu, C, B)
 
 
-@nb.njit(cache=True)
+@jit
 def _f_march(nodes, eps_y, nu, out):
     """F at increasing nodes (all > 1.9): one pass of jg_integral with Neumaier summation."""
     C = c_of_nu(nu)
@@ -217,14 +217,14 @@ def _f_march(nodes, eps_y, nu, out):
         w_prev = nodes[i]
 
 
-def forward_limit(eps_y, nu, extrapolate=False):
+def forward_limit(eps_y, nu, *, extrapolate=False):
     """Largest w* a :class:`ForwardData` may serve: 425 (JGM's range) or, extrapolating, a/R = 1."""
     eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))
     nu = float(check_nu(real_scalar(nu, "nu")))
-    return omega_limit(eps_y, nu, check_bool(extrapolate, "extrapolate"))
+    return omega_limit(eps_y, nu, extrapolate=check_bool(extrapolate, "extrapolate"))
 
 
-def forward_data(eps_y, nu, w_max, unloading="jcg", extrapolate=False,
+def forward_data(eps_y, nu, w_max, unloading="jcg", *, extrapolate=False,
                  bits_per_octave=BITS_PER_OCTAVE):
     """Tabulate the forward map of one material up to interference ``w_max``.
 

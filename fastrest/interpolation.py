@@ -19,11 +19,12 @@ the ends) serves functions that may not be evaluated at a cell's ends (a user's 
 
 import math
 
-import numba as nb
 import numpy as np
 from llvmlite import ir
 from numba.core import types
 from numba.extending import intrinsic
+
+from ._jit import jit
 
 DEGREE = 5
 ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
@@ -161,20 +162,20 @@ def fit_cells(edges, values, u=CHEB_U):
     return rows
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def cell_index(v, shift, base):
     """Index of the cell holding v > 0 (no bounds check)."""
     return (float_bits(v) >> shift) - base
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def two_level_index(v, v_split, shift_fine, base_fine, shift, base):
     """Row of v > 0 in a :func:`two_level_cells` layout (no bounds check)."""
     b = float_bits(v)
     return (b >> shift_fine) - base_fine if v < v_split else (b >> shift) - base
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def row_polynomial(rows, i, u):
     """Row i's polynomial at the local coordinate u in [-1, 1].
 
@@ -186,7 +187,7 @@ def row_polynomial(rows, i, u):
                fma(u2, fma(u, rows[i, 5], rows[i, 4]), fma(u, rows[i, 3], rows[i, 2])))
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def cell_polynomial(rows, i, v):
     """Evaluate row i's polynomial at v."""
     k = np.uint64(i)

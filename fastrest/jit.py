@@ -25,9 +25,9 @@ row of :data:`STATE_SIZE` per contact) gives the normal force with history, and
 :func:`critical_scales` the critical values of a contact from the two bodies' properties (the
 same code as :class:`fastrest.Impact`). See docs/examples/dem_wall.py.
 """
-import numba as nb
 import numpy as np
 
+from ._jit import jit
 from .critical import CriticalScales, critical_scales
 from .curve import CurveData, SceneData, e_curve, loss_curve, omega_m_curve, scene_value
 from .force_law import STATE_SIZE, contact_force, hertz_contact_time
@@ -42,13 +42,13 @@ __all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "l
            "STATE_SIZE", "contact_force", "hertz_contact_time", "CriticalScales", "critical_scales"]
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def omega_m_table(tab, v1_star, eps_y, nu):
     """w_m* at (V1*, eps_y, nu) from a table's :class:`TableData`; NaN outside its domain."""
     return table_value(tab, 0, v1_star, eps_y, nu)
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def e_table(tab, v1_star, eps_y, nu, unloading):
     """e at (V1*, eps_y, nu); ``unloading`` = JCG, ETSION or BRAKE; NaN for a model the table
     does not hold, and outside the table."""
@@ -57,7 +57,7 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
     return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def loss_table(tab, v1_star, eps_y, nu, unloading):
     """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG, ETSION or BRAKE; NaN for a model the
     table does not hold, and outside the table."""
@@ -66,19 +66,19 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
     return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def omega_m_scene(scene, material, v1_star):
     """w_m* of material index ``material`` of a :class:`fastrest.curve.SceneData`; NaN outside."""
     return scene_value(scene, 0, material, v1_star)
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def e_scene(scene, material, v1_star):
     """e of material index ``material`` of a scene at V1*; NaN outside its curve."""
     return scene_value(scene, 1, material, v1_star)
 
 
-@nb.njit(cache=True, inline="always")
+@jit(inline=True)
 def loss_scene(scene, material, v1_star):
     """1 - e^2 of material index ``material`` of a scene at V1*; NaN outside its curve."""
     return scene_value(scene, 2, material, v1_star)

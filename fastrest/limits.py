@@ -51,17 +51,39 @@ def _code(unloading):
     return -1 if unloading is None else _unloading.get(unloading).code
 
 
-def omega_limit(eps_y, nu, extrapolate=False, unloading=None):
+def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     """Largest w_m* allowed for one material (-): 425, a/R = 1 extrapolating, and the end of the
     ``unloading`` model (a name; None: the loading law alone)."""
     e, n, x = float(eps_y), float(nu), check_bool(extrapolate, "extrapolate")
     return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
 
 
-def v1_star_limit(eps_y, nu, extrapolate=False, unloading=None):
-    """Largest V1* the model accepts for one material (-), through V1*^2 = F(w_m*) (eq 29) at
-    :func:`omega_limit`."""
-    w = omega_limit(eps_y, nu, extrapolate, unloading)
+def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
+    """Largest V1* the model accepts for one material (-), through V1*^2 = F(w_m*) (JGM eq 29) at
+    :func:`omega_limit`.
+
+    Parameters
+    ----------
+    eps_y, nu : float
+        The material's eps_y = Sy/E' (-) and Poisson's ratio (-).
+    extrapolate : bool, optional
+        False: w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
+    unloading : str or None, optional
+        A model name: no further than that model is defined (JCG's eq 35 ends at w_m* = 10017.5).
+        None: the loading law alone.
+
+    Returns
+    -------
+    float
+        V1*_max (-); ``math.inf`` if the law never ends.
+
+    Examples
+    --------
+    >>> from fastrest.limits import v1_star_limit
+    >>> round(v1_star_limit(0.005, 0.33), 2)
+    1022.39
+    """
+    w = omega_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
 
 
@@ -88,14 +110,14 @@ def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None
     if unloading is not None:
         model = _unloading.get(unloading)
         if model.omega_end < w_ar and (extrapolate or model.omega_end < OMEGA_M_STAR_MAX):
-            lim = v1_star_limit(e, n, extrapolate, model)
+            lim = v1_star_limit(e, n, extrapolate=extrapolate, unloading=model)
             if (v if V_c is None else v / V_c) > lim:
                 raise ValueError(
                     f"{lead} is past the end of {model.short} unloading ({model.equation}) for "
                     f"eps_y = {e!r}, nu = {n!r}: its w_res reaches w_m at w_m* = {model.omega_end:.6g}, "
                     f"i.e. {at(lim)}, and e is undefined beyond (other unloading models go on to a/R = 1)")
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
-        raise _past_law(lead, e, n, w_ar, f", i.e. {at(v1_star_limit(e, n, True))}")
+        raise _past_law(lead, e, n, w_ar, f", i.e. {at(v1_star_limit(e, n, extrapolate=True))}")
     raise ValueError(
         f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
         f"for eps_y = {e!r}, nu = {n!r} that limit is {at(v1_star_limit(e, n))}. {hint}")

@@ -689,7 +689,7 @@ class RoughSurface:
         code = unloading_code(unloading)
         data = self._tables.get(code)
         if data is None or data.w_max < w_max:
-            lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
+            lim = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # issued once, by __init__
                 data = fw.forward_data(self.eps_y, self.nu, min(max(w_max, 2.0), lim), unloading,
@@ -769,7 +769,7 @@ class RoughSurface:
 
     def _grow_or_raise(self, unloading, need, extrapolate, v1_bad, M):
         """Grow the forward table to cover w* = need, or raise if the model's range ends first."""
-        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
+        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
         data = self._tables.get(unloading_code(unloading))
         if data is not None and data.w_max >= lim:
             what = interference_limit_message(max(need, lim * (1 + 1e-15)), self.eps_y, self.nu, extrapolate)
@@ -802,7 +802,7 @@ class RoughSurface:
 
     def _solve_growing_table(self, run, rows, w_guess, energy, unloading, extrapolate, M):
         """Run a JG solve, growing the forward table until no impact needs more of it."""
-        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
+        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
         data = self._tables.get(unloading_code(unloading))
         if data is None:
             data = self.forward(unloading, min(w_guess, lim), extrapolate)
@@ -833,7 +833,7 @@ class RoughSurface:
         self._check_gw_energy(energy, M)
         # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
         # (a/R = 1) means the impact itself is past it
-        w_end = fw.forward_limit(self.eps_y, self.nu, True)
+        w_end = fw.forward_limit(self.eps_y, self.nu, extrapolate=True)
         run(dummy, g, energy, np.full(n, s_start), True, HERTZ_CAP * w_end, True, hz)
         if np.any(hz[0] == _NEEDS_TABLE):
             k = int(np.flatnonzero(hz[0] == _NEEDS_TABLE)[0])

@@ -124,7 +124,7 @@ def test_extrapolated_jcg_curve_stops_short_of_the_end_within_its_accuracy():
             ref = direct.e_star(v, eps, nu, "jcg", extrapolate=True)
             assert rel(c.e(v), ref).max() <= 2e-13
             assert c.omega_m(c.v_max) == pytest.approx(get("jcg").cells_end, rel=1e-9)
-            end = direct.v1_star_limit(eps, nu, True, "jcg")
+            end = direct.v1_star_limit(eps, nu, extrapolate=True, unloading="jcg")
             with pytest.raises(ValueError, match="square root.*fastrest.direct"):
                 fastrest.curve(eps, nu, "jcg", v_max=0.5 * (c.v_max + end), extrapolate=True)
             # the direct solver goes on to the end; e stays positive and decreasing

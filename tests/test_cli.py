@@ -62,7 +62,7 @@ def test_e_readme_example(capsys):
     V = np.array(README_V)
     np.testing.assert_array_equal(rows[:, 0], V)
     np.testing.assert_allclose(rows[:, 1], V / imp.V_c, rtol=1e-3)                    # %10.4g
-    np.testing.assert_allclose(rows[:, 2], imp.omega_m(V) / imp.omega_c, rtol=1e-4)                 # %10.5g
+    np.testing.assert_allclose(rows[:, 2], imp.max_interference(V) / imp.omega_c, rtol=1e-4)                 # %10.5g
     np.testing.assert_allclose(rows[:, 3], imp.e(V, unloading="jcg"), rtol=0, atol=5.01e-7)   # %10.6f
     np.testing.assert_allclose(rows[:, 4], imp.e(V, unloading="etsion"), rtol=0, atol=5.01e-7)
 
@@ -78,7 +78,7 @@ def test_e_json(capsys):
     rows = doc["impacts"]
     assert [r["V"] for r in rows] == README_V
     V = np.array(README_V)
-    for key, ref in (("V1_star", V / imp.V_c), ("omega_m_star", imp.omega_m(V) / imp.omega_c),
+    for key, ref in (("V1_star", V / imp.V_c), ("omega_m_star", imp.max_interference(V) / imp.omega_c),
                      ("e_jcg", imp.e(V, unloading="jcg")), ("e_etsion", imp.e(V, unloading="etsion")),
                      ("V2_jcg", imp.rebound_velocity(V, unloading="jcg")),
                      ("V2_etsion", imp.rebound_velocity(V, unloading="etsion"))):

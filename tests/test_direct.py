@@ -538,7 +538,7 @@ def test_prop_dimensional_api_matches_normalised(imp, u, unloading):
     eps, nu = imp.eps_y, imp.nu
     assert imp.e(v1, unloading=unloading) == pytest.approx(
         direct.e_star(vs, eps, nu, unloading), rel=1e-13)
-    assert imp.omega_m(v1) == pytest.approx(direct.omega_m_star(vs, eps, nu) * imp.omega_c, rel=1e-13)
+    assert imp.max_interference(v1) == pytest.approx(direct.omega_m_star(vs, eps, nu) * imp.omega_c, rel=1e-13)
     assert imp.rebound_velocity(v1, unloading=unloading) == pytest.approx(
         direct.e_star(vs, eps, nu, unloading) * v1, rel=1e-13)
     w_res, R_res = imp.residual(v1, unloading=unloading)
@@ -559,7 +559,7 @@ def test_dimensional_api_arrays_and_types():
     with pytest.raises(ValueError, match=r"\bV1\b"):
         imp.e(-1.0)
     with pytest.raises(ValueError, match=r"\bV1\b"):
-        imp.omega_m(math.nan)
+        imp.max_interference(math.nan)
     with pytest.raises(ValueError, match="425"):
         imp.e(imp.V_c * 1e4)
 

@@ -130,7 +130,7 @@ def test_time_stepped_impact_reproduces_energy_balance_e(unloading, eps, nu):
     law = fastrest.contact_law(eps, nu, unloading)
     c = fastrest.curve(eps, nu, unloading)
     for v in _speeds(eps, nu, unloading):
-        r = law.impact(v, STEPS_1E8)
+        r = law.impact(v, steps_per_contact=STEPS_1E8)
         assert r["e"] == pytest.approx(c.e(v), rel=1e-8), (v, r["e"], c.e(v))
         assert r["omega_m_star"] == pytest.approx(c.omega_m(v), rel=1e-6)
 
@@ -141,7 +141,7 @@ def test_time_stepping_converges_at_second_order_with_the_switch_located():
     def worst(eps, nu, n, locate=True):
         law = fastrest.contact_law(eps, nu, "jcg")
         c = fastrest.curve(eps, nu, "jcg")
-        return max(abs(law.impact(x, n, locate)["e"] / c.e(x) - 1) for x in v)
+        return max(abs(law.impact(x, steps_per_contact=n, locate_switch=locate)["e"] / c.e(x) - 1) for x in v)
 
     e1, e2 = worst(0.005, 0.33, 1000), worst(0.005, 0.33, 16000)
     order = math.log(e1 / e2) / math.log(16)
@@ -187,7 +187,7 @@ def test_errors_and_nan():
     with pytest.raises(ValueError, match="v1_star"):
         law.impact(-1.0)
     with pytest.raises(ValueError, match="steps_per_contact"):
-        law.impact(2.0, 2.5)
+        law.impact(2.0, steps_per_contact=2.5)
     # jit: NaN in, or past the end, poisons the contact's state (never a plausible force)
     state = np.zeros(STATE_SIZE)
     assert frj.contact_force(law.data, state, 10.0) > 0

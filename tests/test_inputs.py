@@ -92,7 +92,7 @@ def test_impact_limit_in_metres_per_second():
     imp = steel_impact()
     v_max = imp.V_max()
     assert v_max == pytest.approx(direct.v1_star_limit(imp.eps_y, imp.nu) * imp.V_c, rel=1e-15)
-    assert imp.omega_m(v_max * (1 - 1e-9)) / imp.omega_c == pytest.approx(425.0, rel=1e-7)
+    assert imp.max_interference(v_max * (1 - 1e-9)) / imp.omega_c == pytest.approx(425.0, rel=1e-7)
     for V in (v_max * 1.001, [1.0, v_max * 2]):
         with pytest.raises(ValueError, match=r"V1 = [0-9.e+]+ m/s gives w_m\* > 425") as exc:
             imp.e(V)
@@ -239,7 +239,7 @@ def test_impact_accepts_its_own_v_max():
         assert 0.0 < imp.e(imp.V_max()) < 1.0
         for unloading in ("jcg", "etsion"):
             with pytest.warns(fastrest.ExtrapolationWarning):
-                v = imp.V_max(True, unloading)
+                v = imp.V_max(unloading, extrapolate=True)
                 assert 0.0 <= imp.e(v, unloading, extrapolate=True) < 1.0
 
 
@@ -289,7 +289,7 @@ def test_jcg_unloading_ends_where_residual_reaches_maximum_interference():
     from fastrest.unloading.jcg import OMEGA_END as JCG_OMEGA_END, residual_ratio as jcg_residual_ratio
     assert jcg_residual_ratio(JCG_OMEGA_END - 1.0) == pytest.approx(1.0, abs=1e-14)
     eps, nu = 0.0007, 0.35
-    lim_ar = direct.v1_star_limit(eps, nu, True)
+    lim_ar = direct.v1_star_limit(eps, nu, extrapolate=True)
     with pytest.raises(ValueError, match=r"JCG unloading \(eq 35\)"):
         direct.e_star(lim_ar, eps, nu, extrapolate=True)
     with pytest.raises(ValueError, match=r"^v_max = .*JCG unloading"):
@@ -303,10 +303,10 @@ def test_jcg_unloading_ends_where_residual_reaches_maximum_interference():
 
 def test_impact_jcg_end_in_metres_per_second():
     imp = fastrest.Impact(fastrest.Material(200e9, 0.33, 1.5e8, rho=7800), 0.01)   # eps_y ~ 0.00067
-    v_jcg, v_ar = imp.V_max(True, "jcg"), imp.V_max(True, "etsion")
+    v_jcg, v_ar = imp.V_max("jcg", extrapolate=True), imp.V_max("etsion", extrapolate=True)
     assert v_jcg < v_ar
     with pytest.raises(ValueError, match=r"V1 = .* m/s is past the end of JCG unloading"):
         imp.e(v_jcg * 1.01, extrapolate=True)
     with pytest.warns(fastrest.ExtrapolationWarning):
         assert 0.0 < imp.e(v_jcg * 1.01, "etsion", extrapolate=True) < 1.0
-        assert imp.omega_m(v_ar * 0.999, extrapolate=True) > 0.0   # w_m does not depend on unloading
+        assert imp.max_interference(v_ar * 0.999, extrapolate=True) > 0.0   # w_m does not depend on unloading
