@@ -7,9 +7,15 @@
 ``compare`` prints, per array, whether it is bit-identical and otherwise the largest relative
 difference; it exits 1 if any array differs by more than ``--rtol`` (default 0: bit for bit).
 Only public names are used, so the script runs unchanged on both sides of a layout change.
+
+``dump`` compiles every kernel into a fresh Numba cache directory (a minute or two): Numba's
+on-disk cache checks only the source file of the function it compiled, so after an edit to a
+callee in another module a cached caller can still run the old code.
 """
 import argparse
+import os
 import sys
+import tempfile
 import warnings
 
 import numpy as np
@@ -111,7 +117,11 @@ def main(argv=None):
     c.add_argument("--rtol", type=float, default=0.0)
     args = p.parse_args(argv)
     if args.cmd == "dump":
-        dump(args.path)
+        if "numba" in sys.modules:
+            raise RuntimeError("run bench.fingerprint in a fresh process: Numba is already imported")
+        with tempfile.TemporaryDirectory(prefix="fastrest-fp-") as cache:
+            os.environ["NUMBA_CACHE_DIR"] = cache
+            dump(args.path)
         return 0
     return compare(args.before, args.after, args.rtol)
 
