@@ -1,3 +1,4 @@
+"""python -m fastrest: the command-line interface (fastrest/cli.py)."""
 import sys
 
 from .cli import main

@@ -11,6 +11,12 @@ import warnings
 
 import numpy as np
 
+__all__ = ["EPS_Y_VALIDATED", "NU_VALIDATED", "OMEGA_M_STAR_MAX", "EDGE_TOL", "OMEGA_STAR_SWITCH",
+           "ValidityWarning", "ExtrapolationWarning", "as_float_array", "real_scalar", "check_bool",
+           "check_count", "broadcast_named", "broadcast_inputs", "shaped", "check_finite_result",
+           "check_finite_positive", "check_nu", "check_eps_y", "check_velocity", "warn",
+           "warn_if_outside_validated"]
+
 # Range the paper validated (JGM 2010, section 3.3 and end of section 3.3).
 EPS_Y_VALIDATED = (0.0005, 0.01)
 NU_VALIDATED = (0.2, 0.45)

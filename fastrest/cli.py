@@ -11,6 +11,8 @@ import warnings
 
 import numpy as np
 
+__all__ = ["main"]
+
 
 def _model_names(values):
     """Names given to ``e --model``/``--models``: repeatable, comma-separated, or ``all``."""

@@ -22,6 +22,9 @@ from ._jit import jit
 from ._validation import OMEGA_STAR_SWITCH, broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
 from .critical import c_of_nu
 
+
+__all__ = ["P_star", "A_star", "omega_star_limit"]
+
 W_SWITCH = OMEGA_STAR_SWITCH
 LN_SWITCH = math.log(W_SWITCH)
 

@@ -24,8 +24,7 @@ from .energy import V_SWITCH, omega_m_kernel
 from .limits import raise_out_of_range, v1_star_limit, w_upper_model
 from .unloading import get as unloading_model, restitution_kernel
 
-__all__ = ["omega_m_star", "e_star", "loss_star", "residual_star", "solve", "v1_star_limit",
-           "impact_kernel", "impact_array"]
+__all__ = ["omega_m_star", "e_star", "loss_star", "residual_star", "solve", "v1_star_limit"]
 
 
 @jit

@@ -18,6 +18,9 @@ import numpy as np
 from ._jit import jit
 from .contact import W_SWITCH, area_exponent, c_of_nu, evaluate_law, p_star_jg
 
+
+__all__ = ["W_star", "loading_energy"]
+
 #: Gauss-Legendre order per panel and the widest panel in ln w; chosen by measurement against
 #: mpmath (tests/test_direct.py): 24 points on panels <= 0.75 wide reach ~1e-16 relative.
 GL_ORDER = 24

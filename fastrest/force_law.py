@@ -42,8 +42,7 @@ from .limits import raise_interference_out_of_range, w_upper_model
 from . import unloading as _unloading
 from .unloading import elastic
 
-__all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time",
-           "impact_in_time"]
+__all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time"]
 
 #: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res*, and
 #: delta = w_max - w_res* (0 until the contact first unloads from w_max).

@@ -26,6 +26,11 @@ from numba.extending import intrinsic
 
 from ._jit import jit
 
+__all__ = ["DEGREE", "ROW", "MANTISSA_BITS", "CHEB_U", "GAUSS_U", "VALUES_TO_COEFFS", "float_bits",
+           "fma", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes", "share_edges",
+           "values_to_coeffs", "fit_cells", "cell_index", "two_level_index", "row_polynomial",
+           "cell_polynomial"]
+
 DEGREE = 5
 ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
 MANTISSA_BITS = 52

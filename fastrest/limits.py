@@ -22,9 +22,7 @@ from .contact import omega_star_limit_kernel
 from .energy import f_star_kernel
 from . import unloading as _unloading
 
-__all__ = ["OMEGA_M_STAR_MAX", "w_upper", "w_upper_model", "omega_limit", "v1_star_limit",
-           "raise_out_of_range", "interference_limit_message", "raise_interference_out_of_range",
-           "EXTRAPOLATE_HINT"]
+__all__ = ["OMEGA_M_STAR_MAX", "omega_limit", "v1_star_limit"]
 
 EXTRAPOLATE_HINT = "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas"
 

@@ -27,8 +27,7 @@ from .._jit import jit
 from ..contact import p_star_unchecked
 from . import brake, elastic, etsion, jcg
 
-__all__ = ["UnloadingModel", "MODELS", "NAMES", "JCG", "ETSION", "BRAKE", "get", "unloading_code",
-           "residual", "restitution", "omega_end", "restitution_kernel", "elastic"]
+__all__ = ["UnloadingModel", "MODELS", "NAMES", "JCG", "ETSION", "BRAKE", "get"]
 
 _UNITS = (jcg, etsion, brake)
 JCG, ETSION, BRAKE = 0, 1, 2
