@@ -229,7 +229,7 @@ def results_md(R):
       "(warm-up excluded); then the methods of one comparison run in interleaved rounds (order shuffled "
       "each round, each method a block of >= 2 ms), and each time is the **median** over rounds with "
       "the **minimum** beside it. Every time is also given as a ratio to JGM's closed-form fit (43)-(44) "
-      "measured in the same rounds (`fastrest.models.jgm_fit_jcg_kernel` for batches; the fit's scalar "
+      "measured in the same rounds (`fastrest.models.jgm_fit_jcg_array` for batches; the fit's scalar "
       "kernel for calls inside `@njit` and from Python): the median over rounds of the per-round ratio, "
       "which cancels most of the machine's state changes. Absolute times can move by ~1.85x between runs; "
       "ratios are the figures to compare. Errors are worst relative errors against the direct solver "
@@ -313,7 +313,7 @@ def results_md(R):
     a("\n" + load_note(j["fit throughput"]))
     a("\nThroughput: `out[i] = e_curve(data, v[i])`; latency: `x = e_curve(data, v[i] - 1e-9 * x)`, each "
       "call waiting for the previous result. The fit's loops are the same with "
-      "`jgm_fit_jcg_scalar(v, eps_y)`.\n")
+      "`jgm_fit_jcg_kernel(v, eps_y)`.\n")
     mm = mo["multi"]
     a(f"### Multi-material points ({mm['_n']:.0e} points in random order, each its own material; default "
       "table)\n")

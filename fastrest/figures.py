@@ -25,10 +25,11 @@ from pathlib import Path
 import numpy as np
 
 from . import direct
-from . import models as M
-from .contact import A_star, P_star
+from . import models
+from .contact import P_star
 from .energy import W_star
 from .materials import Impact, Material
+from .unloading import etsion
 from .unloading.jcg import residual_ratio as jcg_residual_ratio
 
 #: Density of the alumina (aluminium oxide) spheres of JGM Figs 7-8 (kg/m^3). An assumption:
@@ -176,7 +177,8 @@ def figure4(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
 
     The finite element points of Jackson, Chusoipin & Green (2005) that the paper plots with the
     fit are not available and are not shown. For comparison, the ratio implied by Etsion et al.'s
-    eq (33) for one material (normalised: w_res/w_m = 1 - P_m*/(sqrt(A_m*) w_m*)) is drawn too.
+    eq (33) for one material (normalised: w_res/w_m = 1 - P_m*/(sqrt(A_m*) w_m*),
+    :mod:`fastrest.unloading.etsion`) is drawn too.
     """
     fig, ax = _new_axes(ax)
     w = np.geomspace(1.0, 425.0, n)
@@ -184,7 +186,8 @@ def figure4(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
     ax.plot(w, r_jcg, color=_COLOURS["jcg"], lw=1.8,
             label=r"JCG fit, eq (35): $1.02\,[1 - ((\omega_m^*+5.9)/6.9)^{-0.54}]$")
     we = _omega_grid(eps_y, nu, 1.0, n)
-    r_ets = 1.0 - np.asarray(P_star(we, eps_y, nu)) / (np.sqrt(np.asarray(A_star(we, eps_y, nu))) * we)
+    p = np.asarray(P_star(we, eps_y, nu))
+    r_ets = np.array([etsion.residual(w, w - 1.0, pm, eps_y, nu)[0] / w for w, pm in zip(we, p)])
     ax.plot(we, r_ets, color=_COLOURS["etsion"], lw=1.4, ls="--",
             label=rf"Etsion et al., eq (33) ($\varepsilon_y$ = {eps_y:g}, $\nu$ = {nu:g})")
     ax.axvline(1.9, color="k", lw=0.8, ls=":")
@@ -219,7 +222,7 @@ def figure5(ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=400):
         ax.plot(v, direct.e_star(v, eps, nu, "jcg"), color=col, lw=1.6,
                 label=f"JGM, eq (35), {_eps_label(eps)}")
     v = np.geomspace(v_lo, v_top, n)
-    ax.plot(v, M.chang_ling(v, TABLE1_EPS_Y, nu), color=_COLOURS["chang_ling"], lw=1.6, ls="--",
+    ax.plot(v, models.chang_ling(v, TABLE1_EPS_Y, nu), color=_COLOURS["chang_ling"], lw=1.6, ls="--",
             label=_LABELS["chang_ling"] + r" (any $\varepsilon_y$)")
     ax.set_xscale("log")
     ax.set_xlim(v_lo, v_top)
@@ -250,13 +253,12 @@ def figure6(ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
     for model in ("jcg", "etsion", "brake"):
         ax.plot(v, direct.e_star(v, eps_y, nu, model), color=_COLOURS[model], lw=1.8,
                 ls="--" if model == "brake" else "-", label=_LABELS[model])
-    v_fp = float(M.wu_finite_plastic_velocity(eps_y))
+    v_fp = float(models.wu_finite_plastic_velocity(eps_y))
     vp = v[v > 1.0]
-    e40 = 2.08 * vp**-0.25
-    e41 = 0.62 * (vp * eps_y) ** -0.5
+    e40, e41 = models.wu_branches(vp, eps_y)
     below = vp <= v_fp
     # e = 1 below V_c (as this model); drawn from V_c up, so the jump to 2.08 at V_c is not a line
-    ax.plot(vp, M.wu(vp, eps_y), color=_COLOURS["wu"], lw=1.6, label=_LABELS["wu"])
+    ax.plot(vp, models.wu(vp, eps_y), color=_COLOURS["wu"], lw=1.6, label=_LABELS["wu"])
     ax.plot(vp[~below], e40[~below], color=_COLOURS["wu"], lw=1.0, ls=":",
             label="Wu et al., eqs (40), (41) outside their ranges")
     ax.plot(vp[below], e41[below], color=_COLOURS["wu"], lw=1.0, ls=":")
@@ -300,7 +302,7 @@ def _figure_kharaz(ax, flat, fig_no, v_max, n):
     for model in ("jcg", "etsion"):
         ax.plot(V, imp.e(V, unloading=model), color=_COLOURS[model], lw=1.9, label=_LABELS[model])
     for model, ls in (("thornton", "-."), ("wu", "--"), ("weir_tallon", ":")):
-        e = np.asarray(M.evaluate(model, imp, V))
+        e = np.asarray(models.evaluate(model, imp, V))
         if model == "wu":  # e = 1 up to V_c, then eq (40) jumps to 2.08: do not draw the jump
             e = np.where(V > imp.V_c, e, np.nan)
         ax.plot(V, e, color=_COLOURS[model], lw=1.5, ls=ls, label=_LABELS[model])
