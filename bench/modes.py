@@ -20,6 +20,8 @@ from .timing import interleaved, repeated, with_threads
 
 EPS, NU = CENTRE
 
+__all__ = ["batch_sizes", "threads", "scalar", "in_njit", "multi_material", "curve_from_table", "build_times", "run"]
+
 
 def _speeds(n, vmax, seed=SEED):
     return np.exp(np.random.default_rng(seed + n % 1000003).uniform(0.0, 1.0, n) * np.log(vmax))
