@@ -27,13 +27,32 @@ __all__ = ["BITS_PER_OCTAVE", "CurveData", "curve_value", "omega_m_curve", "e_cu
 BITS_PER_OCTAVE = 5
 
 CurveData = namedtuple("CurveData", ["model", "v_max", "shift", "base", "omega_rows", "e_rows", "loss_rows"])
-CurveData.__doc__ = """Numba-friendly data of one :class:`~fastrest.curve.Curve`.
+CurveData.__doc__ = """Numba-friendly data of one :class:`~fastrest.curve.Curve` (a namedtuple).
 
-model: 0 = JCG (eq 35), 1 = Etsion (eq 33), 2 = Brake; v_max: largest V1* tabulated; shift, base:
-index parameters of the JG cells (row = (bits of V1*) >> shift) - base); *_rows: (ncell, 8) float64
-arrays of [center, 1/half_width, c0..c5] for w_m*, e, 1 - e^2: first the N_HERTZ rows of the
-Hertz-range closed forms (1 < V1* <= 1.9^1.25; for 1 - e^2 they hold (1 - e^2)/(V1* - 1)), then
-the JG cells from 1.9^1.25 to v_max.
+Attributes
+----------
+model : int
+    Unloading model code: 0 JCG (JGM eq 35), 1 Etsion (eq 33), 2 Brake.
+v_max : float
+    Largest V1* tabulated (-).
+shift, base : int
+    Index parameters of the JG cells: row = ((bits of V1*) >> shift) - base.
+omega_rows, e_rows, loss_rows : ndarray
+    (ncell, 8) float64 rows [center, 1/half_width, c0..c5] of w_m*, e and 1 - e^2: first the
+    N_HERTZ rows of the Hertz-range closed forms (1 < V1* <= 1.9^1.25; for 1 - e^2 they hold
+    (1 - e^2)/(V1* - 1)), then the JG cells from 1.9^1.25 to v_max.
+
+Notes
+-----
+Built by :func:`build_curve_data`, evaluated by :func:`curve_value` (JGM eqs 29, 38). Pass it to
+:func:`fastrest.jit.e_curve` in your own Numba code.
+
+Examples
+--------
+>>> import fastrest
+>>> d = fastrest.curve(0.005, 0.33, v_max=20.0).data
+>>> d.model, d.v_max, d.e_rows.shape[1]
+(0, 20.0, 8)
 """
 
 

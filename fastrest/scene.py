@@ -24,11 +24,30 @@ __all__ = ["SceneData", "material_index", "scene_value", "scene_array", "Scene",
 
 SceneData = namedtuple("SceneData", ["model", "v_max", "shift", "base", "offset", "omega_rows",
                                      "e_rows", "loss_rows"])
-SceneData.__doc__ = """Numba-friendly data of a :class:`Scene`: the curves of several materials.
+SceneData.__doc__ = """Numba-friendly data of a :class:`Scene`: the curves of several materials (a namedtuple).
 
-The *_rows arrays hold the Hertz-range rows (shared) and then each material's JG rows; per
-material k: v_max[k], base[k] and offset[k], the number of JG rows of materials before k; model and
-shift are shared. See :func:`fastrest.jit.e_scene`.
+Attributes
+----------
+model, shift : int
+    Unloading model code of every material (0 JCG, 1 Etsion, 2 Brake); index shift of the JG cells.
+v_max : ndarray
+    Largest V1* (-) of each material, float64.
+base, offset : ndarray
+    int64 per material: its JG cells' base key; the number of JG rows of the materials before it.
+omega_rows, e_rows, loss_rows : ndarray
+    (nrow, 8) float64: the Hertz-range rows (shared), then each material's JG rows.
+
+Notes
+-----
+Evaluated by :func:`scene_value` (JGM eqs 29, 38); in your own Numba code
+:func:`fastrest.jit.e_scene`.
+
+Examples
+--------
+>>> import fastrest
+>>> d = fastrest.scene([(0.005, 0.33), (0.002, 0.3)], v_max=20.0).data
+>>> d.v_max.tolist(), int(d.offset[0])
+([20.0, 20.0], 0)
 """
 
 
@@ -50,6 +69,10 @@ def material_index(k):
     ------
     TypeError
         When called from Python: it is for Numba code.
+
+    Notes
+    -----
+    A Numba overload (inlined): the index check of :func:`scene_value` costs a few selects.
 
     Examples
     --------
@@ -130,10 +153,8 @@ def scene_array(data, what, k, v, out):
         ``Scene.data``.
     what : int
         0 w_m*, 1 e, 2 1 - e^2.
-    k : ndarray
-        1-D int64 material indices.
-    v : ndarray
-        1-D float64 V1* (-), the length of ``k``.
+    k, v : ndarray
+        1-D int64 material indices and float64 V1* (-), of one length.
     out : ndarray
         1-D float64 (-), the length of ``v``; written in place.
 
@@ -146,9 +167,7 @@ def scene_array(data, what, k, v, out):
     >>> import numpy as np, fastrest
     >>> from fastrest.scene import scene_array
     >>> s = fastrest.scene([(0.005, 0.33), (0.002, 0.3)], v_max=20.0)
-    >>> out = np.empty(2)
-    >>> scene_array(s.data, 1, np.array([0, 1]), np.array([0.5, 0.5]), out)
-    >>> out.tolist()
+    >>> out = np.empty(2); scene_array(s.data, 1, np.array([0, 1]), np.array([0.5, 0.5]), out); out.tolist()
     [1.0, 1.0]
     """
     for i in range(v.size):

@@ -59,6 +59,14 @@ def test_figure_makes_own_figure(stem):
     assert ax.figure is fig and ax.lines
 
 
+def test_figure_options_are_keyword_only(tmp_path):
+    for fn in F.FIGURES.values():
+        with pytest.raises(TypeError):
+            fn(None)
+    with pytest.raises(TypeError):
+        F.write_all(tmp_path, 20)
+
+
 def test_kharaz_impact_uses_alumina_mass_and_both_moduli():
     imp = F.kharaz_impact("aluminium")
     assert imp.mass == pytest.approx(4 / 3 * math.pi * 0.0025**3 * F.ALUMINA_DENSITY, rel=1e-14)
