@@ -9,7 +9,8 @@ import numpy as np
 
 import fastrest
 from fastrest import models, tables
-from fastrest.curve import BITS_PER_OCTAVE, Curve, build_curve_data
+from fastrest.curve import Curve
+from fastrest.curve_data import BITS_PER_OCTAVE, build_curve_data
 from fastrest.direct import v1_star_limit
 from fastrest.tables import _table_array
 
@@ -18,6 +19,8 @@ from .points import CENTRE, SEED, point_set, reference, worst
 from .timing import interleaved, repeated, with_threads
 
 EPS, NU = CENTRE
+
+__all__ = ["batch_sizes", "threads", "scalar", "in_njit", "multi_material", "curve_from_table", "build_times", "run"]
 
 
 def _speeds(n, vmax, seed=SEED):
@@ -35,7 +38,7 @@ def batch_sizes(cfg, c, log):
         cases = {
             "Curve.e": ((lambda: c.e(v)), n),
             "curve_loop": ((lambda: kernels.curve_loop(c.data, v, o)), n),
-            "fit": ((lambda: models.jgm_fit_jcg_kernel(v, eps1, o)), n),
+            "fit": ((lambda: models.jgm_fit_jcg_array(v, eps1, o)), n),
             "copy": ((lambda: np.copyto(dst, v)), n),
         }
         rounds = cfg["rounds"] if n <= 10**6 else max(5, cfg["rounds"] // 2)
@@ -61,7 +64,7 @@ def threads(cfg, c, log):
                     kernels.curve_prange(c.data, v, o)
                 return f
 
-            cases = {"fit": ((lambda: models.jgm_fit_jcg_kernel(v, eps1, o)), n),
+            cases = {"fit": ((lambda: models.jgm_fit_jcg_array(v, eps1, o)), n),
                      "serial loop": ((lambda: kernels.curve_loop(c.data, v, o)), n)}
             for k in sorted({1, min(2, n_max)}):
                 cases[f"prange, {k} thread" + ("s" if k > 1 else "")] = (par(k), n)
@@ -76,7 +79,7 @@ def threads(cfg, c, log):
 def scalar(cfg, c, log):
     """Scalar calls from Python (timeit loops, interleaved rounds)."""
     import fastrest.direct  # noqa: F401
-    g = {"c": c, "fastrest": fastrest, "models": models, "fit": models.jgm_fit_jcg_scalar}
+    g = {"c": c, "fastrest": fastrest, "models": models, "fit": models.jgm_fit_jcg_kernel}
     stmts = {
         "Curve.e(5.0)": "c.e(5.0)",
         "Curve.loss(5.0)": "c.loss(5.0)",
@@ -84,10 +87,10 @@ def scalar(cfg, c, log):
         "Curve.e(500.0)": "c.e(500.0)",
         "fastrest.e_star(5.0, 0.005, 0.33)": "fastrest.e_star(5.0, 0.005, 0.33)",
         "fastrest.direct.e_star(5.0, 0.005, 0.33)": "fastrest.direct.e_star(5.0, 0.005, 0.33)",
-        "fit jgm_fit_jcg_scalar(5.0, 0.005) (Numba dispatcher)": "fit(5.0, 0.005)",
+        "fit jgm_fit_jcg_kernel(5.0, 0.005) (Numba dispatcher)": "fit(5.0, 0.005)",
         "fit models.jgm_fit_jcg(5.0, 0.005) (NumPy)": "models.jgm_fit_jcg(5.0, 0.005)",
     }
-    ref = "fit jgm_fit_jcg_scalar(5.0, 0.005) (Numba dispatcher)"
+    ref = "fit jgm_fit_jcg_kernel(5.0, 0.005) (Numba dispatcher)"
     cases = {}
     for name, stmt in stmts.items():
         t = timeit.Timer(stmt, globals=g)
@@ -145,7 +148,7 @@ def multi_material(cfg, log):
         "e_table chain (jit) latency": ((lambda: kernels.table_chain(tab.data, v, e, nu)), n),
         "Scene.e (material index per point)": ((lambda: scn.e(v, kidx)), n),
         "e_scene loop (jit) throughput": ((lambda: kernels.scene_loop(scn.data, kidx, v, o)), n),
-        "fit kernel (per-point eps_y)": ((lambda: models.jgm_fit_jcg_kernel(v, e, o)), n),
+        "fit kernel (per-point eps_y)": ((lambda: models.jgm_fit_jcg_array(v, e, o)), n),
         "fit latency (jit chain)": ((lambda: kernels.fit_chain_mm(v, e)), n),
     }
     if not np.isfinite(kernels.table_chain(tab.data, v, e, nu)):
@@ -210,7 +213,7 @@ def build_times(cfg, log):
     cases = {k: (f, 1) for k, f in variants.items()}
     v = _speeds(10**5, v1_star_limit(EPS, NU))
     o = np.empty(v.size)
-    cases["fit kernel, 1e5 points"] = ((lambda: models.jgm_fit_jcg_kernel(v, np.array([EPS]), o)), v.size)
+    cases["fit kernel, 1e5 points"] = ((lambda: models.jgm_fit_jcg_array(v, np.array([EPS]), o)), v.size)
     tm = interleaved(cases, cfg["curve_repeats"], min_block=0.0, seed=11)
     res["curve"] = {k: {**tm[k].as_dict(), **errs[k]} for k in variants}
     res["fit_per_eval_s"] = tm["fit kernel, 1e5 points"].median

@@ -17,6 +17,9 @@ from fastrest.unloading import ETSION, JCG
 SEED = 20100217  # fixed: Nonlinear Dyn. 60:217
 CENTRE = (0.005, 0.33)
 
+__all__ = ["SEED", "CENTRE", "hard_speeds", "PointSet", "materials", "point_set", "reference", "rel_error", "worst",
+           "error_subset"]
+
 
 def hard_speeds(vmax):
     return np.array([1.0, 1 + 1e-12, 1 + 1e-9, V_SWITCH * (1 - 1e-12), V_SWITCH * (1 + 1e-12),

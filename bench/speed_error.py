@@ -16,7 +16,8 @@ import numpy as np
 
 import fastrest
 from fastrest import models, tables
-from fastrest.curve import BITS_PER_OCTAVE, Curve, build_curve_data
+from fastrest.curve import Curve
+from fastrest.curve_data import BITS_PER_OCTAVE, build_curve_data
 from fastrest.tables import Table, _table_array
 
 from . import kernels
@@ -153,9 +154,9 @@ def run(cfg, log=print):
 
     cases = {
         "copy": ((lambda: np.copyto(dst, v)), N),
-        "fit4344_numba": ((lambda: models.jgm_fit_jcg_kernel(v, e, out)), N),
+        "fit4344_numba": ((lambda: models.jgm_fit_jcg_array(v, e, out)), N),
         "fit4344_numpy": ((lambda: models.jgm_fit_jcg(v, e)), N),
-        "fit45_numba": ((lambda: kernels.fit45_kernel(v, e, out)), N),
+        "fit45_numba": ((lambda: kernels.fit45_loop(v, e, out)), N),
         "fit45_numpy": ((lambda: models.jgm_fit_etsion(v, e)), N),
         "direct": ((lambda: fastrest.direct.e_star(vd, ed, nud)), nd),
         "table_default": ((lambda: fastrest.e_star(v, e, n)), N),
@@ -200,7 +201,7 @@ def run(cfg, log=print):
         "deviation from the model (JCG), V1* <= 1000")
     add("fit4344_numpy", "fit (42)-(44), NumPy (models.jgm_fit_jcg)", "fit", fit43_err,
         "deviation from the model (JCG), V1* <= 1000")
-    add("fit45_numba", "fit (45), Numba loop (bench)", "fit", fit45_err, "deviation from the model (Etsion)")
+    add("fit45_numba", "fit (45), Numba loop (models.jgm_fit_etsion_kernel)", "fit", fit45_err, "deviation from the model (Etsion)")
     add("fit45_numpy", "fit (45), NumPy (models.jgm_fit_etsion)", "fit", fit45_err,
         "deviation from the model (Etsion)")
     add("copy", "memory copy (np.copyto, the floor)", "floor", None, "-")

@@ -18,7 +18,8 @@ from .impact import Impact
 from .contact import P_star, A_star, omega_star_limit
 from .energy import W_star, loading_energy
 from . import direct
-from .curve import Curve, curve, Scene, scene
+from .curve import Curve, curve
+from .scene import Scene, scene
 from .tables import Table, load_table, omega_m_star, e_star, loss_star
 from ._hdf5 import TableFileError
 from .force_law import ContactLaw, contact_law

@@ -29,7 +29,8 @@ import numpy as np
 
 from ._jit import jit
 from .critical import CriticalScales, critical_scales
-from .curve import CurveData, SceneData, e_curve, loss_curve, omega_m_curve, scene_value
+from .curve_data import CurveData, e_curve, loss_curve, omega_m_curve
+from .scene import SceneData, scene_value
 from .force_law import STATE_SIZE, contact_force, hertz_contact_time
 from .tables import TableData, table_value
 from .unloading import BRAKE, ETSION, JCG

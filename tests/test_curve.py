@@ -437,3 +437,59 @@ def test_hertz_range_cells_reproduce_closed_form_to_a_few_ulp():
     # Etsion: e = 1 and 1 - e^2 = 0 exactly under Hertz loading
     ce = fastrest.curve(0.005, 0.33, "etsion", v_max=50.0)
     assert np.all(ce.e(v) == 1.0) and np.all(ce.loss(v) == 0.0)
+
+
+def test_options_are_keyword_only():
+    """v_max and extrapolate after the model choice only by name (issue 15)."""
+    with pytest.raises(TypeError):
+        fastrest.curve(0.005, 0.33, "jcg", 10.0)
+    with pytest.raises(TypeError):
+        fastrest.scene([(0.005, 0.33)], "jcg", 10.0)
+    from fastrest.curve_data import build_curve_data
+    with pytest.raises(TypeError):
+        build_curve_data(0.005, 0.33, "jcg", 10.0)
+    assert fastrest.curve(0.005, 0.33, "jcg", v_max=10.0).v_max == 10.0
+
+
+def test_names_from_before_the_split_still_import():
+    """fastrest.curve was one module: its public names still import from there (same objects)."""
+    import fastrest.cells as cells
+    import fastrest.curve_data as cd
+    import fastrest.scene  # noqa: F401  (the module; fastrest.scene is the function)
+    import sys
+    from fastrest.curve import (HERTZ_BASE, N_HERTZ, CurveData, Scene, SceneData, build_curve_data, closed_form,
+                                curve_value, e_curve, hertz_rows, jg_nodes, scene_value)
+    sc = sys.modules["fastrest.scene"]
+    assert (Scene, SceneData, scene_value) == (sc.Scene, sc.SceneData, sc.scene_value)
+    assert (CurveData, build_curve_data, curve_value, e_curve) == (cd.CurveData, cd.build_curve_data, cd.curve_value,
+                                                                   cd.e_curve)
+    assert (HERTZ_BASE, N_HERTZ, closed_form, hertz_rows, jg_nodes) == (cells.HERTZ_BASE, cells.N_HERTZ, cells.closed_form,
+                                                                        cells.hertz_rows, cells.jg_nodes)
+    with pytest.raises(ImportError):
+        from fastrest.curve import no_such_name  # noqa: F401
+
+
+def test_fast_scalar_takes_real_scalars_only():
+    from fastrest.fastpath import fast_scalar
+    assert fast_scalar(2.5) == 2.5 and type(fast_scalar(np.float32(0.5))) is float
+    assert fast_scalar(np.uint8(7)) == 7.0 and fast_scalar(3) == 3.0
+    for other in (True, np.bool_(True), "1", None, 2**60, np.array(1.0), np.array([1.0]), 1j, [1.0]):
+        assert fast_scalar(other) is None, other
+
+
+def test_quantity_methods_of_curves_and_scenes():
+    """One implementation per quantity: named and documented as the quantity, the same numbers on
+    the fast scalar path, the array path, an extrapolated curve and a scene (bit for bit)."""
+    c = fastrest.curve(0.005, 0.33, v_max=50.0)
+    with pytest.warns(ExtrapolationWarning):
+        x = fastrest.curve(0.005, 0.33, extrapolate=True, v_max=1.5 * c.v_limit)
+    s = fastrest.scene([(0.002, 0.3), (0.005, 0.33)], v_max=50.0)
+    v = np.array([0.5, 1.0 + 1e-9, 3.0, 47.0])
+    for name in ("omega_m", "e", "loss"):
+        for obj in (c, x, s):
+            meth = getattr(type(obj), name)
+            assert meth.__name__ == name and "Parameters" in meth.__doc__ and "Examples" in meth.__doc__
+        arr = getattr(c, name)(v)
+        assert [getattr(c, name)(float(t)) for t in v] == arr.tolist()
+        assert getattr(x, name)(v).tolist() == arr.tolist()
+        assert getattr(s, name)(v, 1).tolist() == arr.tolist()

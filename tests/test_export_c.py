@@ -1,7 +1,7 @@
 """The C header of `fastrest export c`: compiled with the system C compiler and compared with the
 Python path (the jitted curve kernels behind fastrest.Curve) at >= 1e5 points, cell boundaries and
 their neighbours (+/- 1 ulp) included. Reference: fastrest.curve's own data evaluated by
-fastrest.curve._curve_array, an independent implementation (Numba) of the same rule; the test
+fastrest.curve_data.curve_array, an independent implementation (Numba) of the same rule; the test
 requires agreement to 2 ulp (the header is designed to agree bit for bit)."""
 import os
 import shutil
@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from fastrest import cli
-from fastrest.curve import HERTZ_EDGES, _curve_array
+from fastrest.cells import HERTZ_EDGES
+from fastrest.curve_data import curve_array
 from fastrest.energy import V_SWITCH
 from fastrest.export import c_header
 from fastrest.interpolation import cell_edges
@@ -83,7 +84,7 @@ def _python(curves, k, v):
         vs = np.ascontiguousarray(v[sel])
         for what, code, row in [(0, 0, 0)] + [(1, c, 1 + c) for c in range(3)] + [(2, c, 4 + c) for c in range(3)]:
             tmp = np.empty(vs.size)
-            _curve_array(curves[m][code], what, vs, tmp)
+            curve_array(curves[m][code], what, vs, tmp)
             out[row, sel] = tmp
     return out
 

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 
 from fastrest import Impact, Material, cli  # noqa: E402
 from fastrest import figures as F  # noqa: E402
-from fastrest import models as M  # noqa: E402
+from fastrest import models  # noqa: E402
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXPECTED = ["fig2_energy", "fig3_max_interference", "fig4_residual_interference",
@@ -57,6 +57,14 @@ def test_figure_accepts_existing_ax(stem):
 def test_figure_makes_own_figure(stem):
     fig, ax = F.FIGURES[stem]()
     assert ax.figure is fig and ax.lines
+
+
+def test_figure_options_are_keyword_only(tmp_path):
+    for fn in F.FIGURES.values():
+        with pytest.raises(TypeError):
+            fn(None)
+    with pytest.raises(TypeError):
+        F.write_all(tmp_path, 20)
 
 
 def test_kharaz_impact_uses_alumina_mass_and_both_moduli():
@@ -111,7 +119,7 @@ def test_e_model_json_matches_evaluate(capsys):
     assert cli.main(["e", *TABLE1_ARGS, "--V", *map(str, V), "--model", "thornton", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["models"] == ["thornton"]
-    expected = M.evaluate("thornton", _table1_impact(), np.array(V))
+    expected = models.evaluate("thornton", _table1_impact(), np.array(V))
     got = [r["e_thornton"] for r in out["impacts"]]
     np.testing.assert_array_equal(got, expected)
     assert "e_wu" not in out["impacts"][0]
@@ -126,12 +134,12 @@ def test_e_model_repeatable_and_all(capsys):
     imp = _table1_impact()
     for name in out["models"]:
         np.testing.assert_array_equal([r["e_" + name] for r in out["impacts"]],
-                                      M.evaluate(name, imp, np.array(V)))
+                                      models.evaluate(name, imp, np.array(V)))
     assert cli.main(["e", *TABLE1_ARGS, "--V", "1", "--models", "all", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["models"] == list(M.MODELS)
-    for name in M.MODELS:
-        assert out["impacts"][0]["e_" + name] == M.evaluate(name, imp, 1.0)
+    assert out["models"] == list(models.MODELS)
+    for name in models.MODELS:
+        assert out["impacts"][0]["e_" + name] == models.evaluate(name, imp, 1.0)
 
 
 def test_e_model_text_columns(capsys):
@@ -139,7 +147,7 @@ def test_e_model_text_columns(capsys):
     text = capsys.readouterr().out
     assert "e (thornton)" in text
     row = [ln for ln in text.splitlines() if ln.split() and ln.split()[0] == "0.5"][0]
-    assert float(row.split()[-1]) == pytest.approx(M.evaluate("thornton", _table1_impact(), 0.5), abs=1e-6)
+    assert float(row.split()[-1]) == pytest.approx(models.evaluate("thornton", _table1_impact(), 0.5), abs=1e-6)
 
 
 def test_e_without_model_unchanged(capsys):

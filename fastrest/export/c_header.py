@@ -15,7 +15,9 @@ import os
 import numpy as np
 
 from .._validation import real_scalar
-from ..curve import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, build_curve_data, curve
+from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
+from ..curve import curve
+from ..curve_data import build_curve_data
 from ..energy import V_SWITCH
 from ..interpolation import ROW
 from ..limits import v1_star_limit
@@ -58,8 +60,8 @@ def scene_curves(materials, v_max=None, option="--v-max"):
             raise ValueError(f"{option} = {v_max!r} is past material {k}'s (eps_y = {e!r}, nu = {n!r}) limit "
                              f"w_m* = 425 at V1* = {lim:.10g}")
         # curve() validates eps_y and nu (ValueError naming them) and warns outside the validated range
-        first = curve(e, n, _unloading.NAMES[0], v_max)
-        out.append([first.data] + [build_curve_data(e, n, name, first.v_max) for name in _unloading.NAMES[1:]])
+        first = curve(e, n, _unloading.NAMES[0], v_max=v_max)
+        out.append([first.data] + [build_curve_data(e, n, name, v_max=first.v_max) for name in _unloading.NAMES[1:]])
     return out
 
 

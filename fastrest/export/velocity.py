@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from .._validation import real_scalar
-from ..curve import build_curve_data, _curve_array
+from ..curve_data import build_curve_data, curve_array
 from ..direct import impact_array
 from ..limits import v1_star_limit
 from ..materials import Impact, Material
@@ -104,17 +104,17 @@ def impact_of(pair, where=""):
 
 
 def _curves(eps_y, nu, v_max):
-    return [build_curve_data(eps_y, nu, name, v_max) for name in _unloading.NAMES]
+    return [build_curve_data(eps_y, nu, name, v_max=v_max) for name in _unloading.NAMES]
 
 
 def _values(curves, v):
     """(quantities, len(v)): w_m*, then e of each model, then 1 - e^2 of each model (curves)."""
     v = np.ascontiguousarray(v, dtype=np.float64)
     out = np.empty((1 + 2 * len(curves), v.size))
-    _curve_array(curves[0], 0, v, out[0])
+    curve_array(curves[0], 0, v, out[0])
     for m, c in enumerate(curves):
-        _curve_array(c, 1, v, out[1 + m])
-        _curve_array(c, 2, v, out[1 + len(curves) + m])
+        curve_array(c, 1, v, out[1 + m])
+        curve_array(c, 2, v, out[1 + len(curves) + m])
     return out
 
 

@@ -1,0 +1,88 @@
+"""The figures of Jackson, Green & Marghitu (2010), drawn from fastrest.
+
+One function per figure of the paper (Figs 2-8; Fig 1 is a sketch). Each takes ``ax=None`` (a
+Matplotlib Axes to draw into; by default a new :class:`matplotlib.figure.Figure` is made, without
+pyplot, so no GUI backend is ever touched) and returns ``(fig, ax)``. :func:`write_all` writes all
+of them as PNG files (``fastrest figures --out DIR``).
+
+Matplotlib is imported only when a figure is drawn, so ``import fastrest`` works without it
+(``pip install fastrest[plot]`` installs it).
+
+Every curve is computed with the exact solver (:mod:`fastrest.direct`) or the closed forms of
+:mod:`fastrest.models`, and stays inside the model's domain: V1* up to
+:func:`fastrest.direct.v1_star_limit` (w_m* = 425, or a/R = 1 if that comes first).
+
+Modules: :mod:`~fastrest.figures.jgm` (Figs 2-4, the model's own quantities),
+:mod:`~fastrest.figures.comparisons` (Figs 5-6, e beside the comparison models) and
+:mod:`~fastrest.figures.kharaz` (Figs 7-8, alumina spheres on aluminium and steel: the masses and
+moduli used there, which the paper does not give in full, are documented in that module).
+"""
+from pathlib import Path
+
+from ._common import EPS_Y_SERIES, TABLE1_EPS_Y, TABLE1_NU
+from .comparisons import figure5, figure6
+from .jgm import figure2, figure3, figure4
+from .kharaz import ALUMINA, ALUMINA_DENSITY, ALUMINIUM_FLAT, KHARAZ_RADIUS, STEEL_FLAT, figure7, figure8, kharaz_impact
+
+__all__ = ["figure2", "figure3", "figure4", "figure5", "figure6", "figure7", "figure8", "kharaz_impact",
+           "FIGURES", "write_all", "ALUMINA_DENSITY", "ALUMINA", "ALUMINIUM_FLAT", "STEEL_FLAT", "KHARAZ_RADIUS",
+           "TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES"]
+
+#: Output file stem -> figure function, in the paper's order.
+FIGURES = {
+    "fig2_energy": figure2,
+    "fig3_max_interference": figure3,
+    "fig4_residual_interference": figure4,
+    "fig5_e_vs_chang_ling": figure5,
+    "fig6_unloading_models": figure6,
+    "fig7_alumina_on_aluminium": figure7,
+    "fig8_alumina_on_steel": figure8,
+}
+
+
+def write_all(out_dir, *, dpi=150):
+    """Draw every figure into ``out_dir`` as PNG (created if needed); return the list of paths.
+
+    Files are named after :data:`FIGURES` (``fig2_energy.png`` ...). PNG metadata carry no software
+    version (``metadata={"Software": None}``), so the bytes depend only on the data and on the
+    Matplotlib version and fonts.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        Directory to write into.
+    dpi : int
+        Resolution of the PNG files (dots per inch), keyword-only.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in the order of :data:`FIGURES`.
+
+    Raises
+    ------
+    ImportError
+        Matplotlib is not installed (``pip install fastrest[plot]``).
+    OSError
+        ``out_dir`` cannot be created or written.
+
+    Notes
+    -----
+    JGM Figs 2-8 (Fig 1 is a sketch); ``fastrest figures --out DIR`` calls this.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from fastrest.figures import write_all
+    >>> [p.name for p in write_all(tempfile.mkdtemp(), dpi=20)][:2]
+    ['fig2_energy.png', 'fig3_max_interference.png']
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for stem, fn in FIGURES.items():
+        fig, _ = fn()
+        p = out / f"{stem}.png"
+        fig.savefig(p, dpi=dpi, metadata={"Software": None})
+        paths.append(p)
+    return paths
