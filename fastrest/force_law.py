@@ -20,7 +20,7 @@ step, for the force of each contact at its current interference. The JGM ingredi
 
 One impact loaded to w_m and unloaded dissipates F(w_m) - P_m (w_m - w_res), in U_c units, which
 is (1 - e^2) V1*^2 of the energy balance (eq 38): integrated in time, this law reproduces the e of
-:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 9).
+:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 10).
 
 The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted to eq (9)
 (:func:`fastrest.forward.P_table_forward`, ~1e-14 relative), the law's data being the material's
