@@ -1,7 +1,8 @@
 """Critical values at the onset of yield: from the two bodies' properties to the scales of the law.
 
 JGM 2010 eqs (4)-(7), (11), (23)-(28). Every formula here is a plain compiled function of floats
-(declared with ``fastrest._jit.jit``), callable from Python and from Numba code alike: :class:`fastrest.Impact` and the DEM-side helper
+(declared with ``fastrest._jit.jit``), callable from Python and from Numba code alike:
+:class:`fastrest.Impact` and the DEM-side helper
 :func:`critical_scales` run the very same compiled code, so they agree bit for bit.
 
 SI units throughout: moduli and strengths in Pa, lengths in m, masses in kg, forces in N,
@@ -22,7 +23,7 @@ __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
 
 @jit
 def c_of_nu(nu):
-    """Critical yield stress coefficient C(nu) = 1.295 exp(0.736 nu) (-): the one definition in fastrest.
+    """Critical yield stress coefficient C(nu) = 1.295 exp(0.736 nu) (-), the one definition of it.
 
     Parameters
     ----------
@@ -152,7 +153,7 @@ def effective_mass(m1, m2):
 
 @jit
 def critical_interference(C, Sy, E_eff, R):
-    """Critical interference omega_c = (pi C Sy / (2 E'))^2 R (m), the interference at the onset of yield.
+    """Critical interference omega_c = (pi C Sy / (2 E'))^2 R (m): the interference at yield onset.
 
     Parameters
     ----------
@@ -188,7 +189,7 @@ def critical_interference(C, Sy, E_eff, R):
 
 @jit
 def critical_force(C, Sy, E_eff, R):
-    """Critical force P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N), the contact force at the onset of yield.
+    """Critical force P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N): the contact force at yield onset.
 
     Parameters
     ----------
@@ -318,7 +319,7 @@ def critical_velocity(U_c, mass):
 
 CriticalScales = namedtuple("CriticalScales", ["E_eff", "R_eff", "mass", "nu", "Sy", "C", "eps_y",
                                                "omega_c", "P_c", "A_c", "U_c", "V_c"])
-CriticalScales.__doc__ = """Effective properties and critical values of one contact (SI units), a namedtuple.
+CriticalScales.__doc__ = """Effective properties and critical values of one contact (SI units).
 
 Built by :func:`critical_scales` (Python or Numba code); the fields are plain floats, so a
 ``CriticalScales`` passes into and out of jitted functions.

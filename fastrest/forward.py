@@ -68,7 +68,7 @@ BITS_PER_OCTAVE = 5
 
 ForwardData = namedtuple("ForwardData", ["model", "eps_y", "nu", "C", "B", "w_max", "shift", "base",
                                          "f_rows", "p_rows"])
-ForwardData.__doc__ = """Numba-friendly forward map of one material, a namedtuple (see :func:`forward_data`).
+ForwardData.__doc__ = """Numba-friendly forward map of one material (see :func:`forward_data`).
 
 Build it with :func:`forward_data` (or :func:`fastrest.contact_law`, as ``law.data``), not by
 hand; pass it into jitted code and to the ``*_forward`` kernels.

@@ -123,8 +123,8 @@ class Impact:
 
         Notes
         -----
-        JGM section 2.1 (1/R = 1/R1 + 1/R2, eq for E'); the reduced mass is the standard two-body
-        reduction, which JGM do not state (docs/model.md section 1).
+        JGM section 2.1 (1/R = 1/R1 + 1/R2 and the combined modulus E'); the reduced mass is the
+        standard two-body reduction, which JGM do not state (docs/model.md section 1).
 
         Examples
         --------
@@ -554,7 +554,8 @@ class Impact:
 
         Notes
         -----
-        JGM eqs (8)-(15) for loading and (32)-(35) for unloading, in time (docs/model.md section 10).
+        JGM eqs (8)-(15) for loading and (32)-(35) for unloading, in time (docs/model.md
+        section 10).
 
         Examples
         --------

@@ -102,7 +102,8 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
     -------
     float
         e (-); NaN outside the table's domain (negative or NaN speed, material outside its
-        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit kernel, it never raises.
+        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit
+        kernel, it never raises.
 
     Notes
     -----
@@ -145,7 +146,8 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
     -------
     float
         1 - e^2 (-); NaN outside the table's domain (negative or NaN speed, material outside its
-        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit kernel, it never raises.
+        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit
+        kernel, it never raises.
 
     Notes
     -----
@@ -216,8 +218,8 @@ def e_scene(scene, material, v1_star):
     Returns
     -------
     float
-        e (-) with the scene's unloading model; NaN for a material index out of range, a negative or NaN speed, or one above the
-        scene's v_max (a jit kernel: it never raises).
+        e (-) with the scene's unloading model; NaN for a material index out of range, a
+        negative or NaN speed, or one above the scene's v_max (a jit kernel: it never raises).
 
     Notes
     -----
@@ -255,8 +257,8 @@ def loss_scene(scene, material, v1_star):
     Returns
     -------
     float
-        1 - e^2 (-) with the scene's unloading model; NaN for a material index out of range, a negative or NaN speed, or one above the
-        scene's v_max (a jit kernel: it never raises).
+        1 - e^2 (-) with the scene's unloading model; NaN for a material index out of range, a
+        negative or NaN speed, or one above the scene's v_max (a jit kernel: it never raises).
 
     Notes
     -----

@@ -182,7 +182,7 @@ class Material:
 
     @property
     def yield_product(self):
-        """C(nu) Sy (Pa): of two bodies, the one with the smaller product yields first (JGM after eq 5).
+        """C(nu) Sy (Pa): of two bodies, the one with the smaller product yields first (JGM eq 5).
 
         ``inf`` for a body that never yields (``Sy = math.inf``).
 

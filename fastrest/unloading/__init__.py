@@ -81,7 +81,7 @@ class UnloadingModel:
     cells_end: float
 
 
-#: The registered models by name, in code order: {"jcg": UnloadingModel, "etsion": ..., "brake": ...}.
+#: The registered models by name, in code order: {"jcg": UnloadingModel(...), "etsion": ..., ...}.
 MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END), float(u.CELLS_END))
           for k, u in enumerate(_UNITS)}
 #: Public names in code order.

@@ -48,7 +48,8 @@ def force(w, w_max, p_max, w_res, delta):
 
     Notes
     -----
-    JGM eq (32), normalised. A jit kernel, inlined into its callers (no input checks; it never raises).
+    JGM eq (32), normalised. A jit kernel, inlined into its callers (no input checks; it never
+    raises).
 
     Examples
     --------
@@ -88,7 +89,8 @@ def returned_energy(w, w_max, p_max, w_res, delta):
     Notes
     -----
     (5/2) int_{w_res}^{w} P* dz of JGM eq (32), in units of U_c = (2/5) P_c omega_c (eq 24); at
-    w_max it is the rebound energy of eq (38). A jit kernel, inlined into its callers (no input checks; it never raises).
+    w_max it is the rebound energy of eq (38). A jit kernel, inlined into its callers (no input
+    checks; it never raises).
 
     Examples
     --------
@@ -123,7 +125,8 @@ def residual_radius_ratio(p_max, delta):
 
     Notes
     -----
-    JGM eq (36), normalised (for Etsion unloading the same as eq 34). A jit kernel, inlined into its callers (no input checks; it never raises).
+    JGM eq (36), normalised (for Etsion unloading the same as eq 34). A jit kernel, inlined into
+    its callers (no input checks; it never raises).
 
     Examples
     --------
@@ -162,7 +165,8 @@ def restitution(f, p_max, w_res, delta):
     Notes
     -----
     JGM eq (38) with eq (32), normalised (docs/model.md section 3); R_res/R from
-    :func:`residual_radius_ratio` (eq 36). A jit kernel, inlined into its callers (no input checks; it never raises).
+    :func:`residual_radius_ratio` (eq 36). A jit kernel, inlined into its callers (no input
+    checks; it never raises).
 
     Examples
     --------
@@ -201,7 +205,8 @@ def area_residual(wm, p_max, area):
     Notes
     -----
     Etsion et al.'s JGM eq (33) normalised, with the JG area A_m* of eq (8); Brake's rule (as
-    tmdsimpy) with A* = w_m*, the Hertz area. A jit kernel, inlined into its callers (no input checks; it never raises).
+    tmdsimpy) with A* = w_m*, the Hertz area. A jit kernel, inlined into its callers (no input
+    checks; it never raises).
 
     Examples
     --------
