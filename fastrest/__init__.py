@@ -1,13 +1,33 @@
 """fastrest: the Jackson-Green-Marghitu (2010) coefficient of restitution, fast.
 
-Data flow: :mod:`~fastrest.materials` (material -> critical values, eqs 4-7, 23-28) ->
-:mod:`~fastrest.critical` (the same in Numba code) -> :mod:`~fastrest.contact` (normalised JG law,
-eqs 8-15) -> :mod:`~fastrest.energy` (W*, w_m*, eqs 22-31) -> :mod:`~fastrest.unloading` (one unit
-per unloading model, eqs 32-38) -> :mod:`~fastrest.limits` (where the model ends) -> :mod:`~fastrest.direct` (exact solver) ->
-:mod:`~fastrest.curve` and :mod:`~fastrest.tables` (fast paths) -> :mod:`~fastrest.jit` (inside
-your own Numba code); :mod:`~fastrest.force_law` (the contact law in the time domain, with
-history, for DEM and transient codes). Comparison models: :mod:`~fastrest.models`; rough surfaces:
+Jackson, Green & Marghitu (2010), Nonlinear Dyn. 60:217-229 (JGM): the coefficient of
+restitution of an elastic-perfectly plastic sphere on a flat. docs/model.md maps every equation to
+the function that implements it.
+
+Data flow: :mod:`~fastrest.materials` (a material, C(nu) of eq 5) -> :mod:`~fastrest.critical`
+(effective properties and critical values, eqs 4-7, 11, 23-28, in Numba code) ->
+:mod:`~fastrest.contact` (normalised JG law, eqs 8-15) -> :mod:`~fastrest.energy` (W*, w_m*, eqs
+22-31) -> :mod:`~fastrest.unloading` (one unit per unloading model, eqs 32-38) ->
+:mod:`~fastrest.limits` (where the model ends) -> :mod:`~fastrest.direct` (exact solver) ->
+:mod:`~fastrest.impact` (:class:`Impact`: two bodies in SI units on top of the solver) and
+:mod:`~fastrest.curve`, :mod:`~fastrest.tables` (fast paths) -> :mod:`~fastrest.jit` (inside your
+own Numba code); :mod:`~fastrest.forward` (interference -> energies, for multi-asperity codes) and
+:mod:`~fastrest.force_law` (the contact law in the time domain, with history, for DEM and
+transient codes). Comparison models: :mod:`~fastrest.models`; rough surfaces:
 :mod:`~fastrest.rough`; the paper's figures: :mod:`~fastrest.figures`.
+
+Examples
+--------
+JGM Table 1 (steel sphere, R = 10 mm, m = 32.7 g, on a rigid flat) at 1 m/s, then the same in
+normalised form (V1* = V1/V_c, eps_y = Sy/E'):
+
+>>> import fastrest
+>>> steel = fastrest.Material(E=200e9, nu=0.33, Sy=1.12e9)
+>>> impact = fastrest.Impact(steel, R=0.01, mass=0.0327)
+>>> round(impact.e(1.0), 4)
+0.7501
+>>> round(fastrest.direct.e_star(10.0, 0.005, 0.33), 6)
+0.828733
 """
 import importlib
 

@@ -31,11 +31,56 @@ OMEGA_STAR_SWITCH = 1.9
 
 class ValidityWarning(UserWarning):
     """Input is inside the model's definition but outside the range the paper validated
-    (0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45, w_m* <= 425)."""
+    (0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45, w_m* <= 425).
+
+    The result is computed with the model's formulas as defined; it is not validated there.
+    Attributed to the caller's line (not to fastrest's internals).
+
+    Parameters
+    ----------
+    message : str
+        What lies outside the range (raised by fastrest, not by users).
+
+    Notes
+    -----
+    JGM section 3.3 states the validated range (docs/model.md section 4). Filter it like any
+    warning, e.g. ``warnings.simplefilter("error", fastrest.ValidityWarning)`` to refuse such
+    input; :class:`ExtrapolationWarning` is a subclass.
+
+    Examples
+    --------
+    >>> import warnings, fastrest
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     e = fastrest.direct.e_star(10.0, 0.02, 0.33)  # eps_y above 0.01
+    >>> caught[0].category.__name__
+    'ValidityWarning'
+    """
 
 
 class ExtrapolationWarning(ValidityWarning):
-    """A result was extrapolated past w_m* = 425 at the caller's request (``extrapolate=True``)."""
+    """A result was extrapolated past w_m* = 425 at the caller's request (``extrapolate=True``).
+
+    Parameters
+    ----------
+    message : str
+        Where the extrapolation starts (raised by fastrest, not by users).
+
+    Notes
+    -----
+    w_m* = 425 is the largest interference JGM computed (section 3.3); past it the same formulas
+    are used up to a/R = 1 (eq 12), where the Jackson-Green law ends (docs/model.md section 4).
+    A subclass of :class:`ValidityWarning`.
+
+    Examples
+    --------
+    >>> import warnings, fastrest
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     e = fastrest.direct.e_star(2000.0, 0.005, 0.33, extrapolate=True)
+    >>> caught[0].category.__name__
+    'ExtrapolationWarning'
+    """
 
 
 _NOT_REAL = (str, bytes, bytearray, memoryview, bool, np.bool_)

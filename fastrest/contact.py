@@ -12,7 +12,8 @@ P* depends on nu only through C(nu) = 1.295 exp(0.736 nu) (5). P* jumps by about
 w = 1.9; integrals are split there. Past a/R = 1 the law is undefined: kernels return NaN and the
 Python wrappers raise.
 
-Kernels are plain ``@njit`` functions of floats; the public functions below validate and broadcast.
+Kernels are plain compiled functions of floats (``fastrest._jit.jit``); the public functions below
+validate and broadcast.
 """
 import math
 
@@ -144,7 +145,8 @@ def P_star(w, eps_y, nu):
     Parameters
     ----------
     w : float or array_like
-        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1.
+        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
+        (:func:`omega_star_limit`; not limited to w* = 425).
     eps_y : float or array_like
         Sy/E' (-), > 0 (validated range 0.0005-0.01).
     nu : float or array_like
@@ -153,18 +155,116 @@ def P_star(w, eps_y, nu):
     Returns
     -------
     float or ndarray
-        P* (-), broadcast over the inputs.
+        P* (-), broadcast over the inputs (a float if all are scalars).
+
+    Raises
+    ------
+    TypeError
+        An input is not a real number or array of them (strings, booleans, None, complex).
+    ValueError
+        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+
+    Notes
+    -----
+    Hertz P* = w^1.5 for w <= 1.9 (JGM eq 14), the Jackson-Green (2005) fit above (eq 9, with the
+    hardness of eq 12 and the area of eqs 8, 10); P* jumps by about -0.16 % at w = 1.9
+    (docs/model.md section 3). No ValidityWarning: this is the law itself, evaluated wherever it
+    is defined.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> round(fastrest.P_star(10.0, 0.005, 0.33), 6)
+    25.647583
+    >>> fastrest.P_star([1.0, 1.9], 0.005, 0.33).round(6)  # Hertz side of the switch
+    array([1.      , 2.618969])
     """
     return evaluate_law(_p_star_array, w, eps_y, nu)
 
 
 def A_star(w, eps_y, nu):
-    """Normalised contact area A* = A/A_c of the JG law, JGM eqs (8), (15). Parameters as :func:`P_star`."""
+    """Normalised contact area A* = A/A_c of the Jackson-Green law (-).
+
+    Parameters
+    ----------
+    w : float or array_like
+        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
+        (:func:`omega_star_limit`; not limited to w* = 425).
+    eps_y : float or array_like
+        Sy/E' (-), > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+
+    Returns
+    -------
+    float or ndarray
+        A* (-), broadcast over the inputs (a float if all are scalars).
+
+    Raises
+    ------
+    TypeError
+        An input is not a real number or array of them (strings, booleans, None, complex).
+    ValueError
+        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+
+    Notes
+    -----
+    Hertz A* = w for w <= 1.9 (JGM eq 15), the Jackson-Green (2005) fit A* = w (w/1.9)^B with
+    B = 0.14 exp(23 eps_y) above (eqs 8, 10); continuous at w = 1.9.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> round(fastrest.A_star(10.0, 0.005, 0.33), 6)
+    12.980177
+    >>> fastrest.A_star(1.0, 0.005, 0.33)
+    1.0
+    """
     return evaluate_law(_a_star_array, w, eps_y, nu)
 
 
 def omega_star_limit(eps_y, nu):
-    """Normalised interference w* at which a/R reaches 1, where the JG law (eq 12) ends (-)."""
+    """Normalised interference w* at which the contact radius reaches the sphere's (a/R = 1) (-).
+
+    The Jackson-Green law ends there: its hardness (JGM eq 12) is stated for 0 < a/R < 1.
+
+    Parameters
+    ----------
+    eps_y : float or array_like
+        Sy/E' (-), > 0.
+    nu : float or array_like
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+
+    Returns
+    -------
+    float or ndarray
+        w* at a/R = 1 (-), broadcast over the inputs. It lies below w* = 425 (the model's range)
+        when eps_y is above about 0.0114 (nu = 0.33).
+
+    Raises
+    ------
+    TypeError
+        An input is not a real number or array of them.
+    ValueError
+        eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast; or an
+        eps_y so small that w* overflows double precision (e.g. 1e-300).
+
+    Notes
+    -----
+    Solves a/R = (pi C eps_y / 2) sqrt(A*(w)) = 1 in closed form, with A* of eq (8) (or A* = w on
+    the Hertz branch) and C of eq (5). :func:`fastrest.limits.omega_limit` combines it with
+    w* = 425 and the unloading model's end.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> round(fastrest.omega_star_limit(0.005, 0.33), 4)
+    1994.4444
+    >>> round(fastrest.omega_star_limit(0.01, 0.33), 4)
+    548.0114
+    """
     (eps_y, nu), shape = broadcast_inputs((eps_y, "eps_y"), (nu, "nu"))
     check_eps_y(eps_y)
     check_nu(nu)

@@ -1,7 +1,8 @@
 """Critical values at the onset of yield: from the two bodies' properties to the scales of the law.
 
-JGM 2010 eqs (4)-(7), (11), (23)-(28). Every formula here is a plain ``@njit`` function of floats,
-callable from Python and from Numba code alike: :class:`fastrest.Impact` and the DEM-side helper
+JGM 2010 eqs (4)-(7), (11), (23)-(28). Every formula here is a plain compiled function of floats
+(declared with ``fastrest._jit.jit``), callable from Python and from Numba code alike:
+:class:`fastrest.Impact` and the DEM-side helper
 :func:`critical_scales` run the very same compiled code, so they agree bit for bit.
 
 SI units throughout: moduli and strengths in Pa, lengths in m, masses in kg, forces in N,
@@ -22,13 +23,66 @@ __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
 
 @jit
 def c_of_nu(nu):
-    """C(nu) = 1.295 exp(0.736 nu), JGM eq (5): the one definition in fastrest (floats or arrays)."""
+    """Critical yield stress coefficient C(nu) = 1.295 exp(0.736 nu) (-), the one definition of it.
+
+    Parameters
+    ----------
+    nu : float or ndarray
+        Poisson's ratio of the material that yields first (-); the model uses 0 <= nu < 0.5.
+
+    Returns
+    -------
+    float or ndarray
+        C (-), of the same shape as ``nu``.
+
+    Notes
+    -----
+    JGM eq (5) (Jackson & Green 2005). A compiled formula with no input checks (it evaluates any
+    float, NaN gives NaN): :func:`fastrest.poisson_factor` is the validating Python function (it
+    raises ValueError outside 0 <= nu <= 0.5). Non-numbers give Numba's ``TypingError``.
+
+    Examples
+    --------
+    >>> from fastrest.critical import c_of_nu
+    >>> round(c_of_nu(0.33), 6)  # JGM Table 1 prints 1.651
+    1.651016
+    """
     return 1.295 * np.exp(0.736 * nu)
 
 
 @jit
 def effective_modulus(E1, nu1, E2, nu2):
-    """Combined modulus E' (Pa): 1/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2; ``E2 = inf`` is rigid."""
+    """Combined (effective) modulus E' (Pa) of two elastic bodies in contact.
+
+    Parameters
+    ----------
+    E1 : float
+        Young's modulus of body 1 (Pa), finite and > 0.
+    nu1 : float
+        Poisson's ratio of body 1 (-), 0 <= nu1 < 0.5.
+    E2 : float
+        Young's modulus of body 2 (Pa), > 0; ``math.inf`` for a rigid body.
+    nu2 : float
+        Poisson's ratio of body 2 (-), 0 <= nu2 < 0.5; unused if ``E2`` is infinite.
+
+    Returns
+    -------
+    float
+        E' (Pa), 1/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+
+    Notes
+    -----
+    JGM section 2.1 (the equivalent sphere on a rigid flat). A compiled formula with no input
+    checks: invalid moduli give a meaningless number, not NaN. :class:`fastrest.Impact` validates
+    its materials first; :func:`critical_scales` returns NaN for invalid input.
+
+    Examples
+    --------
+    >>> import math
+    >>> from fastrest.critical import effective_modulus
+    >>> round(effective_modulus(200e9, 0.33, math.inf, 0.0) / 1e9, 4)  # GPa, rigid flat
+    224.4417
+    """
     inv = (1.0 - nu1**2) / E1
     if E2 < math.inf:
         inv += (1.0 - nu2**2) / E2
@@ -37,43 +91,229 @@ def effective_modulus(E1, nu1, E2, nu2):
 
 @jit
 def effective_radius(R1, R2):
-    """R' = R1 R2/(R1 + R2) (m); ``R2 = inf`` is a flat (R' = R1 exactly)."""
+    """Effective radius R' = R1 R2/(R1 + R2) (m) of two curved surfaces in contact.
+
+    Parameters
+    ----------
+    R1 : float
+        Radius of curvature of body 1 (m), finite and > 0.
+    R2 : float
+        Radius of curvature of body 2 (m), > 0; ``math.inf`` for a flat (then R' = R1 exactly).
+
+    Returns
+    -------
+    float
+        R' (m), 1/R' = 1/R1 + 1/R2.
+
+    Notes
+    -----
+    JGM section 2.1. A compiled formula with no input checks (:func:`critical_scales` returns NaN
+    for invalid input; :class:`fastrest.Impact` raises).
+
+    Examples
+    --------
+    >>> import math
+    >>> from fastrest.critical import effective_radius
+    >>> effective_radius(0.01, math.inf), round(effective_radius(0.01, 0.02), 9)
+    (0.01, 0.006666667)
+    """
     return R1 if R2 == math.inf else R1 * R2 / (R1 + R2)
 
 
 @jit
 def effective_mass(m1, m2):
-    """Reduced mass m' = m1 m2/(m1 + m2) (kg); ``m2 = inf`` is an immovable body (m' = m1 exactly)."""
+    """Reduced mass m' = m1 m2/(m1 + m2) (kg) of two free bodies.
+
+    Parameters
+    ----------
+    m1 : float
+        Mass of body 1 (kg), finite and > 0.
+    m2 : float
+        Mass of body 2 (kg), > 0; ``math.inf`` for an immovable body (then m' = m1 exactly).
+
+    Returns
+    -------
+    float
+        m' (kg).
+
+    Notes
+    -----
+    The standard two-body reduction (JGM use the sphere's mass against a fixed flat and do not
+    state the two-sphere case; see docs/model.md section 1). No input checks.
+
+    Examples
+    --------
+    >>> import math
+    >>> from fastrest.critical import effective_mass
+    >>> effective_mass(0.0327, math.inf), effective_mass(1.0, 3.0)
+    (0.0327, 0.75)
+    """
     return m1 if m2 == math.inf else m1 * m2 / (m1 + m2)
 
 
 @jit
 def critical_interference(C, Sy, E_eff, R):
-    """omega_c = (pi C Sy / (2 E'))^2 R (m), JGM eq (4). C (-), Sy (Pa), E' (Pa), R (m)."""
+    """Critical interference omega_c = (pi C Sy / (2 E'))^2 R (m): the interference at yield onset.
+
+    Parameters
+    ----------
+    C : float
+        C(nu) of the material that yields first (-), :func:`c_of_nu`.
+    Sy : float
+        Yield strength of the material that yields first (Pa), finite and > 0.
+    E_eff : float
+        Effective modulus E' (Pa), :func:`effective_modulus`.
+    R : float
+        Effective radius R' (m), :func:`effective_radius`.
+
+    Returns
+    -------
+    float
+        omega_c (m).
+
+    Notes
+    -----
+    JGM eq (4). No input checks (see :func:`critical_scales`). JGM Table 1 prints 1.335 um for
+    these inputs, smaller by the factor (1 - nu^2)^2; fastrest implements the equation as printed
+    (docs/model.md section 6).
+
+    Examples
+    --------
+    >>> from fastrest.critical import c_of_nu, critical_interference
+    >>> E_eff = 200e9 / (1 - 0.33**2)  # JGM Table 1: steel on a rigid flat
+    >>> round(critical_interference(c_of_nu(0.33), 1.12e9, E_eff, 0.01) * 1e6, 4)  # um
+    1.6748
+    """
     return (math.pi * C * Sy / (2.0 * E_eff)) ** 2 * R
 
 
 @jit
 def critical_force(C, Sy, E_eff, R):
-    """P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N), JGM eq (6)."""
+    """Critical force P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N): the contact force at yield onset.
+
+    Parameters
+    ----------
+    C : float
+        C(nu) of the material that yields first (-), :func:`c_of_nu`.
+    Sy : float
+        Yield strength of the material that yields first (Pa), finite and > 0.
+    E_eff : float
+        Effective modulus E' (Pa), :func:`effective_modulus`.
+    R : float
+        Effective radius R' (m), :func:`effective_radius`.
+
+    Returns
+    -------
+    float
+        P_c (N).
+
+    Notes
+    -----
+    JGM eq (6), equal to (4/3) E' sqrt(R) omega_c^1.5. No input checks (see
+    :func:`critical_scales`).
+
+    Examples
+    --------
+    >>> from fastrest.critical import c_of_nu, critical_force
+    >>> round(critical_force(c_of_nu(0.33), 1.12e9, 200e9 / (1 - 0.33**2), 0.01), 3)
+    64.863
+    """
     return 4.0 / 3.0 * (R / E_eff) ** 2 * (math.pi * C * Sy / 2.0) ** 3
 
 
 @jit
 def critical_area(C, Sy, E_eff, R):
-    """A_c = pi^3 (C Sy R / (2 E'))^2 (m^2), JGM eq (7)."""
+    """Critical contact area A_c = pi^3 (C Sy R / (2 E'))^2 (m^2), the area at the onset of yield.
+
+    Parameters
+    ----------
+    C : float
+        C(nu) of the material that yields first (-), :func:`c_of_nu`.
+    Sy : float
+        Yield strength of the material that yields first (Pa), finite and > 0.
+    E_eff : float
+        Effective modulus E' (Pa), :func:`effective_modulus`.
+    R : float
+        Effective radius R' (m), :func:`effective_radius`.
+
+    Returns
+    -------
+    float
+        A_c (m^2), equal to pi R omega_c.
+
+    Notes
+    -----
+    JGM eq (7). No input checks (see :func:`critical_scales`).
+
+    Examples
+    --------
+    >>> from fastrest.critical import c_of_nu, critical_area
+    >>> round(critical_area(c_of_nu(0.33), 1.12e9, 200e9 / (1 - 0.33**2), 0.01) * 1e6, 5)  # mm^2
+    0.05262
+    """
     return math.pi**3 * (C * Sy * R / (2.0 * E_eff)) ** 2
 
 
 @jit
 def critical_energy(C, Sy, E_eff, R):
-    """U_c = (pi C Sy)^5 R^3 / (60 E'^4) (J), JGM eq (23); equal to (2/5) P_c omega_c, eq (24)."""
+    """Critical strain energy U_c = (pi C Sy)^5 R^3 / (60 E'^4) (J), stored at the onset of yield.
+
+    Parameters
+    ----------
+    C : float
+        C(nu) of the material that yields first (-), :func:`c_of_nu`.
+    Sy : float
+        Yield strength of the material that yields first (Pa), finite and > 0.
+    E_eff : float
+        Effective modulus E' (Pa), :func:`effective_modulus`.
+    R : float
+        Effective radius R' (m), :func:`effective_radius`.
+
+    Returns
+    -------
+    float
+        U_c (J), equal to (2/5) P_c omega_c (eq 24): the unit of every normalised energy.
+
+    Notes
+    -----
+    JGM eq (23) (the Hertz energy (8/15) E' sqrt(R) omega_c^2.5, eqs 17-21). No input checks (see
+    :func:`critical_scales`).
+
+    Examples
+    --------
+    >>> from fastrest.critical import c_of_nu, critical_energy
+    >>> round(critical_energy(c_of_nu(0.33), 1.12e9, 200e9 / (1 - 0.33**2), 0.01) * 1e6, 3)  # uJ
+    43.454
+    """
     return (math.pi * C * Sy) ** 5 * R**3 / (60.0 * E_eff**4)
 
 
 @jit
 def critical_velocity(U_c, mass):
-    """V_c = sqrt(2 U_c / m) (m/s), JGM eq (28). U_c in J, mass in kg."""
+    """Critical impact speed V_c = sqrt(2 U_c / m) (m/s): the fastest impact that stays elastic.
+
+    Parameters
+    ----------
+    U_c : float
+        Critical energy (J), :func:`critical_energy`; >= 0.
+    mass : float
+        Mass of the moving body (kg), or the reduced mass :func:`effective_mass`; > 0.
+
+    Returns
+    -------
+    float
+        V_c (m/s); NaN for U_c < 0 (the square root of a negative number).
+
+    Notes
+    -----
+    JGM eq (28) (from eq 27: (1/2) m V_c^2 = U_c). Normalised speeds are V1* = V1/V_c (eq 30).
+
+    Examples
+    --------
+    >>> from fastrest.critical import critical_velocity
+    >>> round(critical_velocity(4.3454e-5, 0.0327), 5)  # JGM Table 1's mass
+    0.05155
+    """
     return math.sqrt(2.0 * U_c / mass)
 
 
@@ -81,9 +321,39 @@ CriticalScales = namedtuple("CriticalScales", ["E_eff", "R_eff", "mass", "nu", "
                                                "omega_c", "P_c", "A_c", "U_c", "V_c"])
 CriticalScales.__doc__ = """Effective properties and critical values of one contact (SI units).
 
-E_eff (Pa), R_eff (m), mass (kg, reduced), nu (-) and Sy (Pa) of the body that yields first,
-C = C(nu) (-), eps_y = Sy/E' (-), omega_c (m), P_c (N), A_c (m^2), U_c (J), V_c (m/s).
-Normalised variables: w = omega/omega_c, P* = P/P_c, V1* = V1/V_c.
+Built by :func:`critical_scales` (Python or Numba code); the fields are plain floats, so a
+``CriticalScales`` passes into and out of jitted functions.
+
+Parameters
+----------
+E_eff : float
+    Effective modulus E' (Pa), :func:`effective_modulus`.
+R_eff : float
+    Effective radius R' (m), :func:`effective_radius`.
+mass : float
+    Mass of the moving body, or the reduced mass of two free bodies (kg).
+nu : float
+    Poisson's ratio of the body that yields first (-).
+Sy : float
+    Yield strength of the body that yields first (Pa).
+C : float
+    C(nu) (-), JGM eq (5).
+eps_y : float
+    Sy/E' (-), JGM eq (11).
+omega_c, P_c, A_c, U_c, V_c : float
+    Critical interference (m), force (N), area (m^2), energy (J) and speed (m/s), JGM eqs (4),
+    (6), (7), (23), (28).
+
+Notes
+-----
+Normalised variables: w = omega/omega_c, P* = P/P_c, A* = A/A_c, W* = W/U_c, V1* = V1/V_c.
+All fields are NaN when :func:`critical_scales` received invalid input.
+
+Examples
+--------
+>>> from fastrest.critical import CriticalScales
+>>> CriticalScales._fields[:4]
+('E_eff', 'R_eff', 'mass', 'nu')
 """
 
 
@@ -105,6 +375,27 @@ def critical_scales(E1, nu1, Sy1, R1, m1, E2, nu2, Sy2, R2, m2):
         The body with the smaller C(nu) Sy yields first and supplies nu, Sy, C (JGM after eq 5).
         All fields NaN if neither body can yield or an input is not finite and positive where it
         must be (the Python :class:`fastrest.Impact` raises instead).
+
+    Notes
+    -----
+    JGM eqs (4)-(7), (11), (23)-(28) with the effective properties of section 2.1, composed from
+    the functions of this module; :class:`fastrest.Impact` calls the same compiled functions, so
+    the two agree bit for bit. A jit function: it never raises for bad values (NaN fields
+    instead); non-numbers give Numba's ``TypingError``. Also exported as
+    :func:`fastrest.jit.critical_scales`.
+
+    Examples
+    --------
+    JGM Table 1 (steel sphere, R = 10 mm, m = 32.7 g, on a rigid flat):
+
+    >>> import math
+    >>> from fastrest.critical import critical_scales
+    >>> inf = math.inf
+    >>> s = critical_scales(200e9, 0.33, 1.12e9, 0.01, 0.0327, inf, 0.0, inf, inf, inf)
+    >>> round(s.eps_y, 6), round(s.C, 4), round(s.V_c, 5)
+    (0.00499, 1.651, 0.05155)
+    >>> math.isnan(critical_scales(200e9, 0.33, inf, 0.01, 0.0327, inf, 0.0, inf, inf, inf).V_c)
+    True
     """
     nan = math.nan
     ok = (E1 > 0.0 and R1 > 0.0 and m1 > 0.0 and Sy1 > 0.0 and E2 > 0.0 and R2 > 0.0

@@ -73,23 +73,60 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
 
 
 def omega_m_star(v1_star, eps_y, nu, *, extrapolate=False):
-    """Normalised maximum interference w_m* = omega_m/omega_c, solving JGM eq (29).
+    """Normalised maximum interference w_m* = omega_m/omega_c of an impact at V1* (-).
 
     Parameters
     ----------
     v1_star : float or array_like
-        Normalised impact speed V1/V_c (-), eq (30); >= 0.
+        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
+        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
     eps_y : float or array_like
-        Sy/E' (-), eq (11); > 0.
+        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
     nu : float or array_like
-        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
-    extrapolate : bool
-        Allow w_m* > 425 (up to a/R = 1), with a warning.
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
+    extrapolate : bool, optional
+        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1. Default False.
 
     Returns
     -------
     float or ndarray
-        w_m* (-), broadcast over the inputs.
+        w_m* (-), JGM eq (31), broadcast over the inputs (a float if all are scalars).
+
+    Raises
+    ------
+    TypeError
+        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
+        True or False.
+    ValueError
+        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+        that do not broadcast; a speed past w_m* = 425 (without ``extrapolate``) or past a/R = 1
+        (the message names the limit and its V1*).
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+    ExtrapolationWarning
+        With ``extrapolate=True``, when a result lies past w_m* = 425.
+
+    Notes
+    -----
+    Solves the energy balance JGM eq (29), V1*^2 = F(w_m*) with F the loading energy of eqs (19),
+    (25) (:func:`fastrest.loading_energy`): w_m* = V1*^0.8 in closed form up to V1* = 1.9^1.25,
+    Newton's method in ln w above (docs/model.md section 7). Relative error ~1e-15. Does not
+    depend on the unloading model.
+
+    Examples
+    --------
+    JGM check value (docs/model.md section 3):
+
+    >>> from fastrest import direct
+    >>> round(direct.omega_m_star(10.0, 0.005, 0.33), 9)
+    6.549856323
+    >>> direct.omega_m_star(2000.0, 0.005, 0.33)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    ValueError: v1_star = 2000.0 gives w_m* > 425, the model's limit (JGM section 3.3); ...
     """
     # w_m* does not depend on the unloading model; Etsion's is defined wherever w_m* is
     out, shape = _solve(v1_star, eps_y, nu, "etsion", extrapolate)
@@ -97,11 +134,67 @@ def omega_m_star(v1_star, eps_y, nu, *, extrapolate=False):
 
 
 def e_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
-    """Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38) with unloading (35) or (33).
+    """Coefficient of restitution e = V2/V1 (-) of an impact at V1*, by the exact solver.
 
-    Parameters as :func:`omega_m_star`; ``unloading`` names the unloading model:
-    ``"jcg"`` (eq 35, default), ``"etsion"`` (eq 33) or ``"brake"`` (Brake 2015, see
-    :mod:`fastrest.unloading.brake`).
+    Parameters
+    ----------
+    v1_star : float or array_like
+        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
+        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+    eps_y : float or array_like
+        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
+    unloading : {"jcg", "etsion", "brake"}, optional
+        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
+        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
+        (:mod:`fastrest.unloading`).
+    extrapolate : bool, optional
+        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
+        of eq 35 at w_m* = 10017.5). Default False.
+
+    Returns
+    -------
+    float or ndarray
+        e (-), broadcast over the inputs (a float if all are scalars); 1 for V1* <= 1 (elastic).
+        The model can give e slightly above 1 just above V1* = 1.9^1.25 for small nu
+        (docs/model.md section 5); it is not clipped.
+
+    Raises
+    ------
+    TypeError
+        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
+        True or False.
+    ValueError
+        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
+        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
+        limit and its V1*).
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+    ExtrapolationWarning
+        With ``extrapolate=True``, when a result lies past w_m* = 425.
+
+    Notes
+    -----
+    JGM eq (16) with the rebound energy of eq (38) after elastic unloading (eq 32) from the maximum
+    interference of eq (29) (:func:`omega_m_star`): e^2 = P_m* (w_m* - w_res*)/V1*^2, w_res* from
+    the unloading model (eq 35, eq 33 or Brake's; docs/model.md section 3).
+
+    Examples
+    --------
+    JGM check values (docs/model.md section 3):
+
+    >>> from fastrest import direct
+    >>> round(direct.e_star(10.0, 0.005, 0.33), 9)
+    0.828732573
+    >>> round(direct.e_star(10.0, 0.005, 0.33, "etsion"), 9)
+    0.865201797
+    >>> direct.e_star([0.5, 2.2], 0.005, 0.33).round(6)
+    array([1.      , 0.967494])
     """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     return shaped(out[1], shape)
@@ -110,24 +203,185 @@ def e_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
 def loss_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Fraction of the impact energy dissipated, 1 - e^2 (-), computed without cancellation.
 
-    Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9). Parameters as :func:`e_star`.
+    Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9), where 1 - e_star(...)**2
+    would lose most digits (multi-asperity codes sum many barely plastic contacts).
+
+    Parameters
+    ----------
+    v1_star : float or array_like
+        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
+        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+    eps_y : float or array_like
+        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
+    unloading : {"jcg", "etsion", "brake"}, optional
+        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
+        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
+        (:mod:`fastrest.unloading`).
+    extrapolate : bool, optional
+        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
+        of eq 35 at w_m* = 10017.5). Default False.
+
+    Returns
+    -------
+    float or ndarray
+        1 - e^2 (-), broadcast over the inputs (a float if all are scalars); 0 for V1* <= 1.
+
+    Raises
+    ------
+    TypeError
+        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
+        True or False.
+    ValueError
+        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
+        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
+        limit and its V1*).
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+    ExtrapolationWarning
+        With ``extrapolate=True``, when a result lies past w_m* = 425.
+
+    Notes
+    -----
+    JGM eqs (16), (38) as :func:`e_star`, with the JCG ratio of eq (35) evaluated through
+    expm1/log1p from w_m* - 1 (docs/model.md section 3, "JCG unloading below the switch").
+
+    Examples
+    --------
+    >>> from fastrest import direct
+    >>> round(direct.loss_star(10.0, 0.005, 0.33), 9)
+    0.313202323
+    >>> f"{direct.loss_star(1 + 1e-9, 0.005, 0.33):.6e}"
+    '6.386087e-11'
     """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     return shaped(out[2], shape)
 
 
 def residual_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
-    """Residual state after the impact: (w_res*, R_res/R), JGM eqs (33)-(36).
+    """Residual state after the impact: residual interference and radius of curvature (-).
 
-    w_res* = omega_res/omega_c (-) and R_res/R (-), each broadcast over the inputs.
-    Parameters as :func:`e_star`.
+    Parameters
+    ----------
+    v1_star : float or array_like
+        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
+        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+    eps_y : float or array_like
+        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
+    unloading : {"jcg", "etsion", "brake"}, optional
+        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
+        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
+        (:mod:`fastrest.unloading`).
+    extrapolate : bool, optional
+        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
+        of eq 35 at w_m* = 10017.5). Default False.
+
+    Returns
+    -------
+    w_res : float or ndarray
+        Residual interference w_res* = omega_res/omega_c (-), 0 for V1* <= 1.
+    R_res_ratio : float or ndarray
+        Radius of curvature of the residual shape over the sphere's, R_res/R (-); 1 for V1* <= 1.
+        Both broadcast over the inputs.
+
+    Raises
+    ------
+    TypeError
+        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
+        True or False.
+    ValueError
+        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
+        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
+        limit and its V1*).
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+    ExtrapolationWarning
+        With ``extrapolate=True``, when a result lies past w_m* = 425.
+
+    Notes
+    -----
+    w_res* from the unloading model: JGM eq (35) (JCG), eqs (33)-(34) (Etsion) or Brake's rule;
+    R_res/R = P_m*^2/(w_m* - w_res*)^3, eq (36) normalised (docs/model.md section 3).
+
+    Examples
+    --------
+    >>> from fastrest import direct
+    >>> w_res, r = direct.residual_star(10.0, 0.005, 0.33)
+    >>> round(w_res, 6), round(r, 6)
+    (1.823254, 1.999458)
     """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     return shaped(out[3], shape), shaped(out[4], shape)
 
 
 def solve(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
-    """Everything at once: dict of w_m*, e, loss (1 - e^2), w_res*, R_res/R (one solve)."""
+    """Everything the direct solver computes for an impact, from one solve.
+
+    Parameters
+    ----------
+    v1_star : float or array_like
+        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
+        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+    eps_y : float or array_like
+        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
+    unloading : {"jcg", "etsion", "brake"}, optional
+        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
+        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
+        (:mod:`fastrest.unloading`).
+    extrapolate : bool, optional
+        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
+        of eq 35 at w_m* = 10017.5). Default False.
+
+    Returns
+    -------
+    dict
+        ``"omega_m_star"`` (w_m*), ``"e"``, ``"loss"`` (1 - e^2), ``"omega_res_star"`` (w_res*),
+        ``"R_res_ratio"`` (R_res/R), all dimensionless, each as :func:`omega_m_star`,
+        :func:`e_star`, :func:`loss_star` and :func:`residual_star` return them.
+
+    Raises
+    ------
+    TypeError
+        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
+        True or False.
+    ValueError
+        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
+        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
+        limit and its V1*).
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+    ExtrapolationWarning
+        With ``extrapolate=True``, when a result lies past w_m* = 425.
+
+    Notes
+    -----
+    JGM eqs (29), (16), (38) and (33)-(36); cheaper than calling the four functions.
+
+    Examples
+    --------
+    >>> from fastrest import direct
+    >>> r = direct.solve(10.0, 0.005, 0.33)
+    >>> {k: round(v, 6) for k, v in r.items()}  # doctest: +NORMALIZE_WHITESPACE
+    {'omega_m_star': 6.549856, 'e': 0.828733, 'loss': 0.313202, 'omega_res_star': 1.823254,
+     'R_res_ratio': 1.999458}
+    """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     keys = ("omega_m_star", "e", "loss", "omega_res_star", "R_res_ratio")
     return {k: shaped(out[i], shape) for i, k in enumerate(keys)}

@@ -26,7 +26,9 @@ __all__ = ["W_star", "loading_energy"]
 GL_ORDER = 24
 PANEL_WIDTH = 0.75
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_ORDER)
+#: F(1.9) = 1.9^2.5: the loading energy (over U_c) at the Hertz/JG switch.
 F_SWITCH = W_SWITCH**2.5  # F(1.9)
+#: V1* = 1.9^1.25 at which w_m* = 1.9, where e(V1*) jumps (docs/model.md section 3).
 V_SWITCH = W_SWITCH**1.25  # V1* at which w_m = 1.9
 
 
@@ -141,10 +143,48 @@ def _f_star_array(w, eps_y, nu, out):
 
 
 def loading_energy(w, eps_y, nu):
-    """F(w) = 1 - (W_ep)*(w): loading energy to maximum interference w over U_c (-), JGM eqs (19), (25).
+    """Loading energy F(w) = 1 - (W_ep)*(w) to maximum interference w, over U_c (-).
 
-    Equal to V1*^2 of the impact whose maximum interference is w. Parameters as
-    :func:`fastrest.P_star`.
+    Equal to V1*^2 of the impact whose maximum interference is w (the energy balance, JGM eq 29).
+
+    Parameters
+    ----------
+    w : float or array_like
+        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
+        (:func:`omega_star_limit`; not limited to w* = 425).
+    eps_y : float or array_like
+        Sy/E' (-), > 0 (validated range 0.0005-0.01).
+    nu : float or array_like
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+
+    Returns
+    -------
+    float or ndarray
+        F (-), broadcast over the inputs (a float if all are scalars); w^2.5 for w <= 1.9.
+
+    Raises
+    ------
+    TypeError
+        An input is not a real number or array of them (strings, booleans, None, complex).
+    ValueError
+        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+
+    Notes
+    -----
+    JGM eqs (19), (25), (29) divided by U_c (eq 24): F = w^2.5 for w <= 1.9 (Hertz), and
+    F = 1.9^2.5 + (5/2) int_1.9^w P*_JG(z) dz above, by Gauss-Legendre quadrature in ln z
+    (~1e-16 relative against mpmath; docs/model.md sections 3 and 7). No ValidityWarning.
+
+    Examples
+    --------
+    JGM check value (docs/model.md section 3): V1* = 10 reaches w_m* = 6.549856322605.
+
+    >>> import fastrest
+    >>> round(fastrest.loading_energy(6.549856322605, 0.005, 0.33), 9)
+    100.0
+    >>> fastrest.loading_energy(1.0, 0.005, 0.33)
+    1.0
     """
     return evaluate_law(_f_star_array, w, eps_y, nu)
 
@@ -158,11 +198,38 @@ def W_star(w, eps_y, nu):
     Parameters
     ----------
     w : float or array_like
-        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1.
+        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
+        (:func:`omega_star_limit`; not limited to w* = 425).
     eps_y : float or array_like
-        Sy/E' (-), > 0.
+        Sy/E' (-), > 0 (validated range 0.0005-0.01).
     nu : float or array_like
-        Poisson's ratio, 0 <= nu < 0.5.
+        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+
+    Returns
+    -------
+    float or ndarray
+        (W_ep)* (-), broadcast over the inputs (a float if all are scalars).
+
+    Raises
+    ------
+    TypeError
+        An input is not a real number or array of them (strings, booleans, None, complex).
+    ValueError
+        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+
+    Notes
+    -----
+    JGM eqs (22), (25), normalised by U_c (eq 24); computed as 1 - :func:`loading_energy`. Plotted
+    (as -(W_ep)*) in JGM Fig. 2. No ValidityWarning.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> round(fastrest.W_star(10.0, 0.005, 0.33), 6)
+    -271.276805
+    >>> fastrest.W_star(1.0, 0.005, 0.33), round(fastrest.W_star(0.5, 0.005, 0.33), 6)
+    (0.0, 0.823223)
     """
     f = loading_energy(w, eps_y, nu)
     return 1.0 - f

@@ -20,7 +20,7 @@ step, for the force of each contact at its current interference. The JGM ingredi
 
 One impact loaded to w_m and unloaded dissipates F(w_m) - P_m (w_m - w_res), in U_c units, which
 is (1 - e^2) V1*^2 of the energy balance (eq 38): integrated in time, this law reproduces the e of
-:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 9).
+:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 10).
 
 The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted to eq (9)
 (:func:`fastrest.forward.P_table_forward`, ~1e-14 relative), the law's data being the material's
@@ -67,7 +67,30 @@ def contact_force(law, state, w):
     float
         P* (-). NaN for NaN w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
         the unloading model) or an unknown unloading model; the state is then set to NaN (the
-        contact's history is lost: every later call gives NaN until the row is zeroed).
+        contact's history is lost: every later call gives NaN until the row is zeroed). A jit
+        kernel: it never raises.
+
+    Notes
+    -----
+    Virgin loading (w above the largest interference so far): the Jackson-Green law, Hertz w^1.5
+    up to w = 1.9 (JGM eq 14) and eq (9) above, from the cells of ``law.p_rows`` (~1e-14
+    relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
+    maximum point and the unloading model's residual interference (eq 35, eqs 33-34 or Brake's);
+    0 at or below w_res*. See docs/model.md section 10. Inlined into the calling jitted loop; also
+    exported as :func:`fastrest.jit.contact_force`.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest.jit import contact_force
+    >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+    >>> state = law.new_state()
+    >>> round(contact_force(law.data, state, 10.0), 6)  # loading
+    25.647583
+    >>> round(contact_force(law.data, state, 5.0), 6)  # unloading, eq (32)
+    2.401153
+    >>> state.round(6)  # w_max, P*(w_max), w_res*, w_max - w_res*
+    array([10.      , 25.647583,  3.701334,  6.298666])
     """
     # every field of ``law`` is read here, unconditionally: read inside a rarely taken branch, a
     # field made the caller's loop ~15x slower (Numba materialises the tuple; bench/FORCE_LAW.md)
@@ -109,8 +132,32 @@ def _force_path(law, state, w, out):
 def hertz_contact_time(v1_star):
     """Duration of a Hertz impact at V1*, in the law's time unit omega_c/V_c (-).
 
-    tau_c = 2 I V1*^(-1/5), I = int_0^1 (1 - x^2.5)^(-1/2) dx = Gamma(7/5) Gamma(1/2)/Gamma(9/10);
-    in seconds t_c = tau_c omega_c/V_c, the classic 2.868 (m'^2/(R' E'^2 V1))^(1/5).
+    Parameters
+    ----------
+    v1_star : float
+        Normalised impact speed V1/V_c (-), > 0.
+
+    Returns
+    -------
+    float
+        tau_c (-); in seconds t_c = tau_c omega_c/V_c. ``inf`` at V1* = 0, NaN for a negative or NaN
+        V1* (a jit function: it never raises).
+
+    Notes
+    -----
+    tau_c = 2 I V1*^(-1/5), I = int_0^1 (1 - x^2.5)^(-1/2) dx = Gamma(7/5) Gamma(1/2)/Gamma(9/10):
+    the Hertz impact (JGM eqs 14, 19) in the normalised time tau = t V_c/omega_c, equal to the
+    classic t_c = 2.868 (m'^2/(R' E'^2 V1))^(1/5). The JG contact lasts somewhat longer. Use it to
+    choose a time step (docs/model.md section 10); also exported as
+    :func:`fastrest.jit.hertz_contact_time`.
+
+    Examples
+    --------
+    >>> from fastrest.force_law import hertz_contact_time
+    >>> round(hertz_contact_time(1.0), 6)
+    2.943275
+    >>> round(hertz_contact_time(10.0), 6)
+    1.857081
     """
     return 2.0 * _HERTZ_HALF_TIME * v1_star ** -0.2
 
@@ -171,7 +218,23 @@ class ContactLaw:
     """The time-domain contact law of one material and unloading model (see the module doc).
 
     Build with :func:`contact_law` (normalised) or :meth:`fastrest.Impact.contact_law`
-    (dimensional: interferences in m, forces in N).
+    (dimensional: interferences in m, forces in N), which validate their inputs; the constructor
+    itself does not. Instances pickle.
+
+    Parameters
+    ----------
+    eps_y, nu : float
+        Material (-): eps_y = Sy/E' > 0, 0 <= nu < 0.5.
+    unloading : str
+        Unloading model name (``"jcg"``, ``"etsion"``, ``"brake"``).
+    extrapolate : bool
+        Whether the law was built past w* = 425 (used in error messages).
+    data : ForwardData
+        The material's forward map, from :func:`fastrest.forward.forward_data`.
+    omega_c : float, optional
+        Interference unit (m), default 1.0 (normalised).
+    P_c : float, optional
+        Force unit (N), default 1.0 (normalised).
 
     Attributes
     ----------
@@ -186,6 +249,21 @@ class ContactLaw:
         multiplied by ``P_c`` (1.0 and 1.0 for a normalised law).
     data : ForwardData
         For :func:`fastrest.jit.contact_force` in Numba code.
+
+    Notes
+    -----
+    The Jackson-Green loading law (JGM eqs 8-15) with elastic unloading and reloading (eq 32)
+    through the residual interference of the unloading model (eq 35, eqs 33-34 or Brake's); see
+    the module docstring and docs/model.md section 10.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+    >>> law
+    ContactLaw(eps_y=0.005, nu=0.33, unloading='jcg', w_max=30.0)
+    >>> law.force([0.0, 10.0, 5.0, 10.0]).round(6)  # load, unload, reload
+    array([ 0.      , 25.647583,  2.401153, 25.647583])
     """
 
     def __init__(self, eps_y, nu, unloading, extrapolate, data, omega_c=1.0, P_c=1.0):
@@ -199,7 +277,32 @@ class ContactLaw:
                 f"w_max={self.w_max!r}{units})")
 
     def new_state(self, n=None):
-        """Zeros: the history of ``n`` virgin contacts, shape (n, STATE_SIZE) (or one row)."""
+        """Zeros: the history of ``n`` virgin contacts, for :func:`contact_force` and :meth:`force`.
+
+        Parameters
+        ----------
+        n : int, optional
+            Number of contacts, a whole number in [0, 1e9]; None (default): one contact.
+
+        Returns
+        -------
+        ndarray
+            float64 zeros of shape (n, :data:`STATE_SIZE`), or (:data:`STATE_SIZE`,) for ``n=None``.
+
+        Raises
+        ------
+        TypeError
+            ``n`` is not a number.
+        ValueError
+            ``n`` is not a whole number in [0, 1e9].
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+        >>> law.new_state(), law.new_state(3).shape
+        (array([0., 0., 0., 0.]), (3, 4))
+        """
         return np.zeros(STATE_SIZE if n is None else (check_count(n, "n", 0, 10**9), STATE_SIZE))
 
     def force(self, interference, state=None):
@@ -224,7 +327,19 @@ class ContactLaw:
         TypeError
             Non-numbers.
         ValueError
-            NaN or infinite interference, or one past the law's end (the message names it).
+            NaN or infinite interference, or one past the law's end (the message names it); a
+            ``state`` that is not a C-contiguous float64 array of shape (:data:`STATE_SIZE`,).
+
+        Notes
+        -----
+        Runs :func:`contact_force` (JGM eqs 9, 14 loading, eq 32 unloading) along the path.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+        >>> law.force([0.0, 1.0, 10.0, 5.0, 0.5]).round(6)  # 0.5 is below w_res*: separated
+        array([ 0.      ,  1.      , 25.647583,  2.401153,  0.      ])
         """
         x = as_float_array(interference, "interference")
         w = np.ascontiguousarray(x, dtype=np.float64).ravel() / self.omega_c
@@ -247,8 +362,48 @@ class ContactLaw:
     def impact(self, v1_star, *, steps_per_contact=2000, locate_switch=True):
         """e of one impact at V1* integrated in time with this law (:func:`impact_in_time`).
 
-        Returns a dict: ``e``, ``omega_m_star`` (largest interference), ``steps``, and the final
-        ``state``. For checking a time step: compare with :func:`fastrest.curve` ``.e(v1_star)``.
+        For checking a time step: compare with :func:`fastrest.curve` ``.e(v1_star)``.
+
+        Parameters
+        ----------
+        v1_star : float
+            Normalised impact speed V1/V_c (-), finite and > 0.
+        steps_per_contact : int, optional
+            Velocity-Verlet steps per Hertz contact duration (:func:`hertz_contact_time`), a whole
+            number in [10, 1e8]; default 2000.
+        locate_switch : bool, optional
+            Split the step that crosses w = 1.9 on virgin loading there (second order; default
+            True). False: a plain fixed-step loop, first order at the force jump.
+
+        Returns
+        -------
+        dict
+            ``"e"`` (rebound over impact speed, -), ``"omega_m_star"`` (largest interference w*,
+            -), ``"steps"`` (int) and the contact's final ``"state"`` (ndarray).
+
+        Raises
+        ------
+        TypeError
+            ``v1_star`` or ``steps_per_contact`` not a single real number; ``locate_switch`` not
+            True or False.
+        ValueError
+            v1_star not finite and > 0; ``steps_per_contact`` not a whole number in [10, 1e8]; an
+            impact whose interference passes the law's end (``w_max``; near that speed a coarse
+            step overshoots: take more steps).
+
+        Notes
+        -----
+        The normalised equation of motion d^2w/dtau^2 = -(5/4) P*(w) (JGM eqs 24, 28:
+        tau = t V_c/omega_c); integrated finely enough it reproduces the e of the energy balance,
+        eqs (29), (38) (errors per step count: docs/model.md section 10).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+        >>> r = law.impact(10.0, steps_per_contact=1000)
+        >>> round(r["e"], 6), round(fastrest.direct.e_star(10.0, 0.005, 0.33), 6)
+        (0.828732, 0.828733)
         """
         v = real_scalar(v1_star, "v1_star")
         if not (math.isfinite(v) and v > 0.0):
@@ -286,6 +441,11 @@ def contact_law(eps_y, nu, unloading="jcg", *, w_max=None, extrapolate=False, om
         model's end (w* = 425, or a/R = 1 / the unloading model's end if earlier).
     extrapolate : bool
         Allow w* past 425 up to a/R = 1 (and the unloading model's end).
+    omega_c : float, optional
+        Interference unit (m), finite and > 0: :meth:`ContactLaw.force` divides its input by it.
+        Default 1.0 (a normalised law); :meth:`fastrest.Impact.contact_law` passes the impact's.
+    P_c : float, optional
+        Force unit (N), finite and > 0: :meth:`ContactLaw.force` multiplies P* by it. Default 1.0.
 
     Returns
     -------
@@ -293,8 +453,32 @@ def contact_law(eps_y, nu, unloading="jcg", *, w_max=None, extrapolate=False, om
 
     Raises
     ------
-    TypeError, ValueError
-        Invalid material, unknown ``unloading``, or ``w_max`` past the model's end.
+    TypeError
+        eps_y, nu, w_max, omega_c or P_c not a single real number; ``extrapolate`` not True or
+        False.
+    ValueError
+        eps_y not finite and > 0; nu outside [0, 0.5); an unknown ``unloading``; w_max negative,
+        not finite, or past the model's end (w* = 425, a/R = 1 or the unloading model's end: the
+        message names it); omega_c or P_c not finite and > 0.
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+
+    Notes
+    -----
+    JGM eqs (8)-(15) for loading, (32) with (35), (33)-(34) or Brake's rule for unloading, built on
+    :func:`fastrest.forward.forward_data` (docs/model.md section 10).
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> law = fastrest.contact_law(0.005, 0.33, "etsion")
+    >>> law.unloading, law.w_max
+    ('etsion', 425.0)
+    >>> round(float(law.force([10.0])[0]), 6)
+    25.647583
     """
     eps_y = real_scalar(eps_y, "eps_y")
     nu = real_scalar(nu, "nu")

@@ -70,11 +70,37 @@ ForwardData = namedtuple("ForwardData", ["model", "eps_y", "nu", "C", "B", "w_ma
                                          "f_rows", "p_rows"])
 ForwardData.__doc__ = """Numba-friendly forward map of one material (see :func:`forward_data`).
 
-model: 0 = JCG unloading (eq 35), 1 = Etsion (eq 33); eps_y, nu: material (-); C = C(nu) (eq 5),
-B = 0.14 exp(23 eps_y) (eq 10); w_max: largest w* served (-); shift, base: cell-index parameters;
-f_rows: (ncell, 8) float64 rows [center, 1/half_width, c0..c5] of F on (1.9, w_top], where w_top
->= w_max is the end of the bit-cell holding w_max; p_rows: the same for P* (used only by
-:func:`P_table_forward`).
+Build it with :func:`forward_data` (or :func:`fastrest.contact_law`, as ``law.data``), not by
+hand; pass it into jitted code and to the ``*_forward`` kernels.
+
+Parameters
+----------
+model : int
+    Unloading model code: 0 = JCG (eq 35), 1 = Etsion (eqs 33-34), 2 = Brake
+    (:data:`JCG`, :data:`ETSION`, :data:`BRAKE`).
+eps_y, nu : float
+    The material (-).
+C : float
+    C(nu) (-), JGM eq (5).
+B : float
+    Area exponent 0.14 exp(23 eps_y) (-), eq (10).
+w_max : float
+    Largest interference w* = omega/omega_c served (-); the kernels give NaN above it.
+shift, base : int
+    Cell-index parameters of the bit-indexed cells (:mod:`fastrest.interpolation`).
+f_rows : ndarray
+    (ncell, 8) float64 rows [center, 1/half_width, c0..c5] of F on (1.9, w_top], where
+    w_top >= w_max is the end of the bit-cell holding w_max.
+p_rows : ndarray
+    The same for P* (used by :func:`P_table_forward`, :func:`FP_table_forward` and
+    :func:`fastrest.jit.contact_force`).
+
+Examples
+--------
+>>> from fastrest import forward
+>>> d = forward.forward_data(0.005, 0.33, 50.0)
+>>> d.model, d.w_max, d.f_rows.shape
+(0, 50.0, (151, 8))
 """
 
 
@@ -90,7 +116,36 @@ def _p_jg(data, w):
 
 @jit(inline=True)
 def F_forward(data, w):
-    """Loading energy to interference w over U_c, F(w) = 1 - (W_ep)*(w) (-); NaN outside [0, w_max]."""
+    """Loading energy to interference w over U_c, F(w) = 1 - (W_ep)*(w) (-).
+
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    float
+        F (-); w^2.5 for w <= 1.9. NaN for w < 0, NaN or w > ``data.w_max`` (a jit kernel: it never
+        raises).
+
+    Notes
+    -----
+    JGM eqs (19), (25) normalised by U_c: the V1*^2 of a single sphere whose maximum interference is
+    w (eq 29). Above w = 1.9 read from the degree-5 cells of ``data.f_rows`` (~1e-15 relative to
+    :func:`fastrest.loading_energy`). Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> round(forward.F_forward(d, 6.549856322605), 9)  # the V1* = 10 check value, squared
+    100.0
+    >>> forward.F_forward(d, 60.0)  # past w_max
+    nan
+    """
     if w > W_SWITCH:
         if w <= data.w_max:
             return cell_polynomial(data.f_rows, cell_index(w, data.shift, data.base), w)
@@ -102,9 +157,31 @@ def F_forward(data, w):
 
 @jit(inline=True)
 def P_forward(data, w):
-    """Contact force at interference w over P_c, P*(w) (JG law, eqs 9, 14); NaN outside [0, w_max].
+    """Contact force at interference w over P_c, P*(w) (-), by the exact formula (no table).
 
-    Exact formula (no table): Hertz w^1.5 up to w = 1.9, the JG fit above.
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    float
+        P* (-); NaN for w < 0, NaN or w > ``data.w_max`` (a jit kernel: it never raises).
+
+    Notes
+    -----
+    The Jackson-Green law: Hertz w^1.5 up to w = 1.9 (JGM eq 14), eq (9) above (as
+    :func:`fastrest.P_star`).
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> round(forward.P_forward(d, 10.0), 6)
+    25.647583
     """
     if w > W_SWITCH:
         if w <= data.w_max:
@@ -117,10 +194,33 @@ def P_forward(data, w):
 
 @jit(inline=True)
 def P_table_forward(data, w):
-    """P*(w) from the table (within ~1e-14 of :func:`P_forward`, ~7x cheaper above w = 1.9).
+    """P*(w) from the table (within ~1e-14 of :func:`P_forward`, ~7x cheaper above w = 1.9) (-).
 
     For Newton slopes and other places where the last digits do not matter; reported forces use
-    the exact :func:`P_forward`. NaN outside [0, w_max].
+    the exact :func:`P_forward`.
+
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    float
+        P* (-); NaN for w < 0, NaN or w > ``data.w_max`` (a jit kernel: it never raises).
+
+    Notes
+    -----
+    JGM eqs (9), (14), above w = 1.9 from the degree-5 cells of ``data.p_rows`` fitted to eq (9).
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> abs(forward.P_table_forward(d, 10.0) / forward.P_forward(d, 10.0) - 1) < 1e-13
+    True
     """
     if w > W_SWITCH:
         if w <= data.w_max:
@@ -133,10 +233,37 @@ def P_table_forward(data, w):
 
 @jit(inline=True)
 def FP_table_forward(data, w):
-    """(F(w), P*(w)) with P* from its table: one cell lookup for both (NaN outside [0, w_max]).
+    """(F(w), P*(w)) with P* from its table: one cell lookup for both.
 
     The pair a Newton iteration on the energy balance needs (energy and its slope, the force);
     about 3x cheaper than :func:`F_forward` plus :func:`P_forward` above w = 1.9.
+
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    F : float
+        Loading energy over U_c (-), as :func:`F_forward`.
+    P : float
+        Force over P_c (-), as :func:`P_table_forward`. Both NaN for w < 0, NaN or
+        w > ``data.w_max`` (a jit kernel: it never raises).
+
+    Notes
+    -----
+    JGM eqs (19), (25) and (9), (14); dF/dw = (5/2) P* (eq 25).
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> f, p = forward.FP_table_forward(d, 10.0)
+    >>> round(f, 6), round(p, 6)
+    (272.276805, 25.647583)
     """
     if w > W_SWITCH:
         if w <= data.w_max:
@@ -156,9 +283,41 @@ def FP_table_forward(data, w):
 def forward_values(data, w):
     """(F, P*, R, L) at interference w: loading energy, force, returned and dissipated energy.
 
-    Energies over U_c, force over P_c. R = P*(w) (w - w_res*(w)) (JGM eq 38 with the unloading
-    model's w_res*), L = F - R without cancellation. All NaN outside [0, w_max] or for an unknown
-    unloading model.
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    F : float
+        Loading energy to w over U_c (-), :func:`F_forward`.
+    P : float
+        Force over P_c (-), :func:`P_forward`.
+    R : float
+        Energy returned by elastic unloading from w over U_c (-), :func:`returned_forward`.
+    L : float
+        Energy dissipated over U_c (-), F - R without cancellation (0 for w <= 1).
+        All four NaN for w < 0, NaN, w > ``data.w_max`` or an unknown ``data.model`` (a jit
+        kernel: it never raises).
+
+    Notes
+    -----
+    R = P*(w) (w - w_res*(w)): JGM eq (38) with the elastic unloading of eq (32) and the unloading
+    model's w_res* (eq 35, eqs 33-34 or Brake's). For an impact whose maximum interference is w,
+    e^2 = R/F and 1 - e^2 = L/F.
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> F, P, R, L = forward.forward_values(d, 6.549856322605)  # w_m* of V1* = 10
+    >>> round(F, 6), round(P, 6), round(R, 6), round(L, 6)
+    (100.0, 14.530473, 68.679768, 31.320232)
+    >>> round((R / F) ** 0.5, 6)  # e, as fastrest.direct.e_star(10.0, 0.005, 0.33)
+    0.828733
     """
     if not (w >= 0.0 and w <= data.w_max and data.model >= 0 and data.model < N_MODELS):
         return np.nan, np.nan, np.nan, np.nan
@@ -177,13 +336,68 @@ def forward_values(data, w):
 
 @jit(inline=True)
 def returned_forward(data, w):
-    """Energy returned by elastic unloading from w over U_c, P*(w) (w - w_res*(w)); NaN outside [0, w_max]."""
+    """Energy returned by elastic unloading from w, over U_c: R(w) = P*(w) (w - w_res*(w)) (-).
+
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    float
+        R (-); equal to F(w) for w <= 1 (elastic). NaN for w < 0, NaN, w > ``data.w_max`` or an
+        unknown ``data.model`` (a jit kernel: it never raises).
+
+    Notes
+    -----
+    JGM eq (38) normalised, with eq (32) and the unloading model's w_res* (eq 35, eqs 33-34 or
+    Brake's): see :func:`forward_values`.
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> round(forward.returned_forward(d, 6.549856322605), 6)
+    68.679768
+    """
     return forward_values(data, w)[2]
 
 
 @jit(inline=True)
 def loss_forward(data, w):
-    """Energy dissipated by loading to w and unloading, over U_c: F(w) - R(w) (0 for w <= 1)."""
+    """Energy dissipated by loading to w and unloading, over U_c: L(w) = F(w) - R(w) (-).
+
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+
+    Returns
+    -------
+    float
+        L (-), computed without cancellation; 0 for w <= 1 (and for w <= 1.9 with Etsion or Brake
+        unloading). NaN for w < 0, NaN, w > ``data.w_max`` or an unknown ``data.model`` (a jit
+        kernel: it never raises).
+
+    Notes
+    -----
+    JGM eqs (25), (38): the loading energy minus the energy eq (32) returns (see
+    :func:`forward_values`); (1 - e^2) V1*^2 of the impact whose maximum interference is w.
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> round(forward.loss_forward(d, 6.549856322605), 6)
+    31.320232
+    >>> forward.loss_forward(d, 0.5)
+    0.0
+    """
     return forward_values(data, w)[3]
 
 
@@ -218,7 +432,42 @@ def _f_march(nodes, eps_y, nu, out):
 
 
 def forward_limit(eps_y, nu, *, extrapolate=False):
-    """Largest w* a :class:`ForwardData` may serve: 425 (JGM's range) or, extrapolating, a/R = 1."""
+    """Largest interference w* a :class:`ForwardData` of this material may serve (-).
+
+    Parameters
+    ----------
+    eps_y : float
+        Sy/E' (-), > 0.
+    nu : float
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5.
+    extrapolate : bool, optional
+        False (default): w* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
+
+    Returns
+    -------
+    float
+        The limit w* (-): 425, or the w* where a/R = 1 if smaller or when extrapolating. (The
+        unloading model's end is not applied here; :func:`forward_data` applies it.)
+
+    Raises
+    ------
+    TypeError
+        ``eps_y`` or ``nu`` not a single real number; ``extrapolate`` not True or False.
+    ValueError
+        eps_y not finite and > 0; nu outside [0, 0.5).
+
+    Notes
+    -----
+    :func:`fastrest.limits.omega_limit` with the loading law alone (docs/model.md section 4).
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> forward.forward_limit(0.005, 0.33)
+    425.0
+    >>> round(forward.forward_limit(0.005, 0.33, extrapolate=True), 4)
+    1994.4444
+    """
     eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))
     nu = float(check_nu(real_scalar(nu, "nu")))
     return omega_limit(eps_y, nu, extrapolate=check_bool(extrapolate, "extrapolate"))
@@ -240,16 +489,48 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", *, extrapolate=False,
     unloading : {"jcg", "etsion", "brake"}
         Residual-interference model, JGM eq (35), (33) or Brake's (:mod:`fastrest.unloading`).
     extrapolate : bool
-        Allow w_max above 425 (JGM's range), up to the point where a/R = 1.
+        Allow w_max above 425 (JGM's range), up to the point where a/R = 1 (and the unloading
+        model's end).
+    bits_per_octave : int, optional
+        Cells per octave of w are 2^bits_per_octave, a whole number in [1, 10]; default
+        :data:`BITS_PER_OCTAVE` (5: ~5e-15 relative on F).
 
     Returns
     -------
     ForwardData
+        Immutable; pass it to the ``*_forward`` kernels, in Python or inside jitted code.
 
     Raises
     ------
+    TypeError
+        eps_y, nu or w_max not a single real number; ``extrapolate`` not True or False.
     ValueError
-        For invalid material or w_max, or w_max beyond the model's range.
+        eps_y not finite and > 0; nu outside [0, 0.5); w_max negative or not finite; w_max past
+        w* = 425 (without ``extrapolate``), past a/R = 1 or past the unloading model's end (the
+        message names the limit); an unknown ``unloading``; ``bits_per_octave`` outside [1, 10].
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+
+    Notes
+    -----
+    Tabulates the loading energy F(w) (JGM eqs 19, 25) above w = 1.9 by one cumulative march of
+    Gauss-Legendre quadrature, and P*(w) (eq 9), on bit-indexed degree-5 cells
+    (:mod:`fastrest.interpolation`); agrees with :func:`fastrest.loading_energy` to ~1e-15
+    relative (tests/test_rough.py asserts <= 1e-12).
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.33, 50.0, "etsion")
+    >>> d.model == forward.ETSION, d.w_max
+    (True, 50.0)
+    >>> forward.forward_data(0.005, 0.33, 500.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    ValueError: w_max = 500.0 is beyond w* = 425, the largest interference the model covers ...
     """
     model = unloading_code(unloading)
     eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))

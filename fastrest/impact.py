@@ -48,6 +48,48 @@ class Impact:
 
     Sphere on sphere: use :meth:`Impact.two_spheres`, which sets R_eff = R1 R2 / (R1 + R2) and
     the reduced mass m1 m2 / (m1 + m2) (standard two-body reduction; JGM do not state it).
+
+    Attributes
+    ----------
+    sphere, flat : Material
+        The inputs (``flat`` None for a rigid flat).
+    yielding : Material
+        The body that yields first.
+    E_eff : float
+        Effective modulus E' (Pa).
+    R_eff : float
+        Effective radius (m).
+    mass : float
+        Mass of the moving body, or the reduced mass (kg).
+
+    Raises
+    ------
+    TypeError
+        ``sphere`` (or ``flat``) is not a :class:`fastrest.Material` (or None); R or mass not a
+        single real number.
+    ValueError
+        R or mass not finite and > 0; no mass given and ``sphere.rho`` is None; neither body can
+        yield (Sy = inf for both); inputs so extreme that a critical value is not a finite, normal
+        double (the message names it).
+
+    Notes
+    -----
+    JGM section 2.1 (equivalent sphere), eqs (4)-(7), (11), (23), (28) for the critical values
+    (properties ``omega_c``, ``P_c``, ``A_c``, ``U_c``, ``V_c``, ``eps_y``, ``C``, ``nu``, ``Sy``,
+    from :mod:`fastrest.critical`), and the restitution methods on top of
+    :mod:`fastrest.direct` (eqs 16, 29-38). Instances pickle.
+
+    Examples
+    --------
+    JGM Table 1 (steel sphere, R = 10 mm, m = 32.7 g, on a rigid flat):
+
+    >>> import fastrest
+    >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+    >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+    >>> round(imp.eps_y, 6), round(imp.V_c, 5)  # m/s
+    (0.00499, 0.05155)
+    >>> round(imp.e(1.0), 6)  # at 1 m/s
+    0.750144
     """
 
     def __init__(self, sphere, R, flat=None, mass=None):
@@ -55,7 +97,43 @@ class Impact:
 
     @classmethod
     def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
-        """Two free spheres: R_eff = R1 R2/(R1+R2), reduced mass m1 m2/(m1+m2), V1 = relative speed."""
+        """An impact of two free spheres; V1 is then their relative normal speed.
+
+        Parameters
+        ----------
+        sphere1, sphere2 : Material
+            The two spheres' materials.
+        R1, R2 : float
+            Their radii (m), finite and > 0.
+        mass1, mass2 : float, optional
+            Their masses (kg), finite and > 0. Default: (4/3) pi R^3 rho from the material's rho.
+
+        Returns
+        -------
+        Impact
+            With R_eff = R1 R2/(R1 + R2) and the reduced mass m1 m2/(m1 + m2).
+
+        Raises
+        ------
+        TypeError
+            A sphere is not a :class:`fastrest.Material`; a radius or mass not a single real number.
+        ValueError
+            A radius or mass not finite and > 0; a mass missing where the material has no rho;
+            neither body can yield.
+
+        Notes
+        -----
+        JGM section 2.1 (1/R = 1/R1 + 1/R2 and the combined modulus E'); the reduced mass is the
+        standard two-body reduction, which JGM do not state (docs/model.md section 1).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)
+        >>> imp = fastrest.Impact.two_spheres(steel, 0.01, steel, 0.01, 0.0327, 0.0327)
+        >>> imp.R_eff, imp.mass
+        (0.005, 0.01635)
+        """
         for name, m in (("sphere1", sphere1), ("sphere2", sphere2)):
             if not isinstance(m, Material):
                 raise TypeError(f"{name} must be a fastrest.Material, got {type(m).__name__}")
@@ -154,7 +232,29 @@ class Impact:
         return critical_velocity(self.U_c, self.mass)
 
     def critical_values(self):
-        """All critical and effective values as a dict (SI units)."""
+        """All critical and effective values as a dict (SI units).
+
+        Returns
+        -------
+        dict
+            ``E_eff`` (Pa), ``R_eff`` (m), ``mass`` (kg), ``nu`` (-), ``Sy`` (Pa), ``C`` (-),
+            ``eps_y`` (-), ``omega_c`` (m), ``P_c`` (N), ``A_c`` (m^2), ``U_c`` (J), ``V_c`` (m/s):
+            the fields of :class:`fastrest.critical.CriticalScales`.
+
+        Notes
+        -----
+        JGM eqs (4)-(7), (11), (23), (28). The omega_c and P_c of JGM Tables 1, 3, 4 are smaller by
+        (1 - nu^2)^2; fastrest implements the equations (docs/model.md section 6).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> cv = imp.critical_values()
+        >>> round(cv["omega_c"] * 1e6, 4), round(cv["P_c"], 3)  # um, N
+        (1.6748, 64.863)
+        """
         return {
             "E_eff": self.E_eff, "R_eff": self.R_eff, "mass": self.mass, "nu": self.nu,
             "Sy": self.Sy, "C": self.C, "eps_y": self.eps_y, "omega_c": self.omega_c,
@@ -183,6 +283,26 @@ class Impact:
         -------
         float
             V1 (m/s) = V1*_max V_c, eq (28).
+
+        Raises
+        ------
+        TypeError
+            ``extrapolate`` is not True or False.
+        ValueError
+            An unknown ``unloading``.
+
+        Notes
+        -----
+        :func:`fastrest.limits.v1_star_limit` (the energy balance, eq 29, at the interference
+        limit) times V_c (docs/model.md section 4).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> round(imp.V_max(), 4), round(imp.V_max(extrapolate=True), 4)  # m/s
+        (52.7211, 199.2743)
         """
         return v1_star_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * self.V_c
 
@@ -208,7 +328,20 @@ class Impact:
         TypeError
             V1 is not a real number or array of them.
         ValueError
-            V1 < 0, not finite, or above :meth:`V_max` (the message gives the limit in m/s).
+            V1 < 0, not finite, or above :meth:`V_max` (the message gives the limit in m/s); an
+            unknown ``unloading``.
+
+        Notes
+        -----
+        JGM eq (30) with V_c of eq (28). Every normalised API of fastrest takes V1*.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> print(round(imp.v1_star(1.0), 6))
+        19.397414
         """
         V = check_velocity(V1, "V1", "(m/s)")
         v = V / self.V_c
@@ -233,13 +366,71 @@ class Impact:
         -------
         float or ndarray
             omega_m (m). (:meth:`fastrest.Curve.omega_m` is the dimensionless w_m* = omega_m / omega_c.)
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`v1_star`.
+
+        Warns
+        -----
+        ValidityWarning
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45.
+        ExtrapolationWarning
+            With ``extrapolate=True``, past w_m* = 425.
+
+        Notes
+        -----
+        :func:`fastrest.direct.omega_m_star` (eq 29) times omega_c (eq 4), at V1* of eq (30).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> round(imp.max_interference(1.0) * 1e6, 4)  # um
+        19.2188
         """
         return direct.omega_m_star(self.v1_star(V1, extrapolate=extrapolate), self.eps_y, self.nu,
                                    extrapolate=extrapolate) * self.omega_c
 
     def omega_m(self, V1, extrapolate=False):
         """Deprecated name of :meth:`max_interference` (metres, unlike the dimensionless
-        ``Curve.omega_m``)."""
+        ``Curve.omega_m``).
+
+        Parameters
+        ----------
+        V1 : float or array_like
+            Impact speed (m/s), see :meth:`v1_star`.
+        extrapolate : bool, optional
+            Accept speeds past w_m* = 425.
+
+        Returns
+        -------
+        float or ndarray
+            omega_m (m), as :meth:`max_interference`.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`max_interference`.
+
+        Warns
+        -----
+        DeprecationWarning
+            Always: use :meth:`max_interference`.
+
+        Examples
+        --------
+        >>> import warnings
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore", DeprecationWarning)
+        ...     imp.omega_m(1.0) == imp.max_interference(1.0)
+        True
+        """
         warnings.warn("Impact.omega_m is deprecated: use Impact.max_interference (m)", DeprecationWarning,
                       stacklevel=2)
         return self.max_interference(V1, extrapolate=extrapolate)
@@ -266,6 +457,18 @@ class Impact:
         TypeError, ValueError
             As :meth:`v1_star`; ValueError for an unknown ``unloading``.
 
+        Warns
+        -----
+        ValidityWarning
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45.
+        ExtrapolationWarning
+            With ``extrapolate=True``, past w_m* = 425.
+
+        Notes
+        -----
+        :func:`fastrest.direct.e_star` at V1* = V1/V_c (eq 30): e^2 = P_m* (w_m* - w_res*)/V1*^2
+        from eqs (29), (32), (38) and the unloading model (eq 35, eqs 33-34 or Brake's).
+
         Examples
         --------
         >>> import fastrest
@@ -277,14 +480,92 @@ class Impact:
                              unloading=unloading, extrapolate=extrapolate)
 
     def rebound_velocity(self, V1, unloading="jcg", *, extrapolate=False):
-        """Rebound speed V2 = e V1 (m/s) for impact speed V1 (m/s), JGM eq (38); arguments as :meth:`e`."""
+        """Rebound speed V2 = e V1 (m/s) for impact speed V1 (m/s).
+
+        Parameters
+        ----------
+        V1 : float or array_like
+            Impact speed (m/s), see :meth:`v1_star`.
+        unloading : {"jcg", "etsion", "brake"}, optional
+            Unloading model (see :mod:`fastrest.unloading`).
+        extrapolate : bool, optional
+            Accept speeds past w_m* = 425.
+
+        Returns
+        -------
+        float or ndarray
+            V2 (m/s), of the shape of V1.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`e`.
+
+        Warns
+        -----
+        ValidityWarning, ExtrapolationWarning
+            As :meth:`e`.
+
+        Notes
+        -----
+        JGM eqs (37), (38) (via e, eq 16).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> imp.rebound_velocity([0.5, 1.0]).round(6)  # m/s
+        array([0.416044, 0.750144])
+        """
         out = self.e(V1, unloading=unloading, extrapolate=extrapolate)  # validates V1
         out = out * as_float_array(V1, "V1")
         return float(out) if np.ndim(out) == 0 else out
 
     def contact_law(self, unloading="jcg", *, extrapolate=False):
-        """The time-domain contact law of this contact in SI units (:func:`fastrest.contact_law`):
-        ``law.force(omega)`` takes interferences omega (m) in time order and returns forces (N)."""
+        """The time-domain contact law of this contact in SI units (:func:`fastrest.contact_law`).
+
+        ``law.force(omega)`` takes interferences omega (m) in time order and returns forces (N).
+
+        Parameters
+        ----------
+        unloading : {"jcg", "etsion", "brake"}, optional
+            Unloading model (see :mod:`fastrest.unloading`).
+        extrapolate : bool, optional
+            Serve interferences past w* = 425 (up to a/R = 1 and the unloading model's end).
+
+        Returns
+        -------
+        ContactLaw
+            With ``omega_c`` (m) and ``P_c`` (N) of this impact as units; ``law.data`` stays
+            normalised, for :func:`fastrest.jit.contact_force`.
+
+        Raises
+        ------
+        TypeError
+            ``extrapolate`` is not True or False.
+        ValueError
+            An unknown ``unloading``.
+
+        Warns
+        -----
+        ValidityWarning
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45.
+
+        Notes
+        -----
+        JGM eqs (8)-(15) for loading and (32)-(35) for unloading, in time (docs/model.md
+        section 10).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> law = imp.contact_law()
+        >>> law.force([0.0, 1e-6, 2e-6]).round(4)  # interference in m, force in N
+        array([ 0.    , 29.9256, 84.6423])
+        """
         from .force_law import contact_law
 
         return contact_law(self.eps_y, self.nu, unloading, extrapolate=extrapolate, omega_c=self.omega_c,
@@ -302,6 +583,29 @@ class Impact:
         -------
         (omega_res, R_res) : tuple of float or ndarray
             Metres.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`e`.
+
+        Warns
+        -----
+        ValidityWarning, ExtrapolationWarning
+            As :meth:`e`.
+
+        Notes
+        -----
+        :func:`fastrest.direct.residual_star` times omega_c (eq 4) and R_eff.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        >>> omega_res, R_res = imp.residual(1.0)
+        >>> round(omega_res * 1e6, 4), round(R_res * 1e3, 4)  # um, mm
+        (7.6978, 29.1037)
         """
         w_res, r_ratio = direct.residual_star(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y,
                                               self.nu, unloading=unloading, extrapolate=extrapolate)

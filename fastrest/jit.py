@@ -45,14 +45,82 @@ __all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "l
 
 @jit(inline=True)
 def omega_m_table(tab, v1_star, eps_y, nu):
-    """w_m* at (V1*, eps_y, nu) from a table's :class:`TableData`; NaN outside its domain."""
+    """Normalised maximum interference w_m* at (V1*, eps_y, nu) from a table (-).
+
+    Parameters
+    ----------
+    tab : TableData
+        A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
+    v1_star : float
+        Normalised impact speed V1/V_c (-), >= 0.
+    eps_y : float
+        Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
+    nu : float
+        Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
+
+    Returns
+    -------
+    float
+        w_m* (-); NaN outside the table's domain (negative or NaN speed, material outside its
+        grid, a point past w_m* = 425 or a/R = 1): a jit kernel, it never raises.
+
+    Notes
+    -----
+    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_star`) stored
+    in the table (docs/model.md section 7). Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import jit as frj
+    >>> tab = fastrest.load_table().data
+    >>> round(frj.omega_m_table(tab, 10.0, 0.005, 0.33), 6)  # direct: 6.549856
+    6.549856
+    >>> frj.omega_m_table(tab, 10.0, 0.05, 0.33)  # outside the table
+    nan
+    """
     return table_value(tab, 0, v1_star, eps_y, nu)
 
 
 @jit(inline=True)
 def e_table(tab, v1_star, eps_y, nu, unloading):
-    """e at (V1*, eps_y, nu); ``unloading`` = JCG, ETSION or BRAKE; NaN for a model the table
-    does not hold, and outside the table."""
+    """Coefficient of restitution e at (V1*, eps_y, nu) from a table (-).
+
+    Parameters
+    ----------
+    tab : TableData
+        A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
+    v1_star : float
+        Normalised impact speed V1/V_c (-), >= 0.
+    eps_y : float
+        Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
+    nu : float
+        Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
+    unloading : int
+        Unloading model code: :data:`JCG` (eq 35), :data:`ETSION` (eqs 33-34) or :data:`BRAKE`.
+
+    Returns
+    -------
+    float
+        e (-); NaN outside the table's domain (negative or NaN speed, material outside its
+        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit
+        kernel, it never raises.
+
+    Notes
+    -----
+    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_star`) stored in the
+    table. Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import jit as frj
+    >>> tab = fastrest.load_table().data
+    >>> round(frj.e_table(tab, 10.0, 0.005, 0.33, frj.JCG), 6)  # direct: 0.828733
+    0.828733
+    >>> round(frj.e_table(tab, 10.0, 0.005, 0.33, frj.ETSION), 6)  # direct: 0.865202
+    0.865202
+    """
     if not unloading >= 0:
         return np.nan
     return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
@@ -60,8 +128,41 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
 
 @jit(inline=True)
 def loss_table(tab, v1_star, eps_y, nu, unloading):
-    """1 - e^2 at (V1*, eps_y, nu); ``unloading`` = JCG, ETSION or BRAKE; NaN for a model the
-    table does not hold, and outside the table."""
+    """Dissipated fraction 1 - e^2 at (V1*, eps_y, nu) from a table (-).
+
+    Parameters
+    ----------
+    tab : TableData
+        A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
+    v1_star : float
+        Normalised impact speed V1/V_c (-), >= 0.
+    eps_y : float
+        Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
+    nu : float
+        Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
+    unloading : int
+        Unloading model code: :data:`JCG` (eq 35), :data:`ETSION` (eqs 33-34) or :data:`BRAKE`.
+
+    Returns
+    -------
+    float
+        1 - e^2 (-); NaN outside the table's domain (negative or NaN speed, material outside its
+        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit
+        kernel, it never raises.
+
+    Notes
+    -----
+    Interpolates :func:`fastrest.direct.loss_star` (JGM eqs 16, 38, computed without
+    cancellation) stored in the table. Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import jit as frj
+    >>> tab = fastrest.load_table().data
+    >>> round(frj.loss_table(tab, 10.0, 0.005, 0.33, frj.JCG), 6)  # direct: 0.313202
+    0.313202
+    """
     if not unloading >= 0:
         return np.nan
     return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
@@ -69,17 +170,108 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
 
 @jit(inline=True)
 def omega_m_scene(scene, material, v1_star):
-    """w_m* of material index ``material`` of a :class:`fastrest.curve.SceneData`; NaN outside."""
+    """Normalised maximum interference w_m* of one material of a scene at V1* (-).
+
+    Parameters
+    ----------
+    scene : SceneData
+        A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
+    material : int
+        Material index into the scene, 0 <= material < number of materials.
+    v1_star : float
+        Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+
+    Returns
+    -------
+    float
+        w_m* (-); NaN for a material index out of range, a negative or NaN speed, or one above the
+        scene's v_max (a jit kernel: it never raises).
+
+    Notes
+    -----
+    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_star`) on the
+    material's curve cells (docs/model.md section 7). Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import jit as frj
+    >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
+    >>> round(frj.omega_m_scene(sc, 0, 10.0), 6), round(frj.omega_m_scene(sc, 1, 300.0), 6)
+    (6.549856, 126.263984)
+    """
     return scene_value(scene, 0, material, v1_star)
 
 
 @jit(inline=True)
 def e_scene(scene, material, v1_star):
-    """e of material index ``material`` of a scene at V1*; NaN outside its curve."""
+    """Coefficient of restitution e of one material of a scene at V1* (-).
+
+    Parameters
+    ----------
+    scene : SceneData
+        A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
+    material : int
+        Material index into the scene, 0 <= material < number of materials.
+    v1_star : float
+        Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+
+    Returns
+    -------
+    float
+        e (-) with the scene's unloading model; NaN for a material index out of range, a
+        negative or NaN speed, or one above the scene's v_max (a jit kernel: it never raises).
+
+    Notes
+    -----
+    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_star`) on the
+    material's curve cells. Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    JGM check values (docs/model.md section 3):
+
+    >>> import fastrest
+    >>> from fastrest import jit as frj
+    >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
+    >>> round(frj.e_scene(sc, 0, 10.0), 9), round(frj.e_scene(sc, 1, 300.0), 9)
+    (0.828732573, 0.405336002)
+    >>> frj.e_scene(sc, 2, 10.0)  # no material 2
+    nan
+    """
     return scene_value(scene, 1, material, v1_star)
 
 
 @jit(inline=True)
 def loss_scene(scene, material, v1_star):
-    """1 - e^2 of material index ``material`` of a scene at V1*; NaN outside its curve."""
+    """Dissipated fraction 1 - e^2 of one material of a scene at V1* (-).
+
+    Parameters
+    ----------
+    scene : SceneData
+        A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
+    material : int
+        Material index into the scene, 0 <= material < number of materials.
+    v1_star : float
+        Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+
+    Returns
+    -------
+    float
+        1 - e^2 (-) with the scene's unloading model; NaN for a material index out of range, a
+        negative or NaN speed, or one above the scene's v_max (a jit kernel: it never raises).
+
+    Notes
+    -----
+    Interpolates :func:`fastrest.direct.loss_star` (JGM eqs 16, 38, without cancellation) on the
+    material's curve cells. Inlined into the calling jitted loop.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import jit as frj
+    >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
+    >>> round(frj.loss_scene(sc, 0, 10.0), 6)
+    0.313202
+    """
     return scene_value(scene, 2, material, v1_star)

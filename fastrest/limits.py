@@ -50,8 +50,50 @@ def _code(unloading):
 
 
 def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
-    """Largest w_m* allowed for one material (-): 425, a/R = 1 extrapolating, and the end of the
-    ``unloading`` model (a name; None: the loading law alone)."""
+    """Largest maximum interference w_m* = omega_m/omega_c the model accepts for one material (-).
+
+    Parameters
+    ----------
+    eps_y : float
+        Sy/E' (-), > 0. Not validated here (pass a valid material: the public APIs that call this
+        check it first).
+    nu : float
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5; not validated here either.
+    extrapolate : bool, optional
+        False (default): no further than w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
+    unloading : str or UnloadingModel or None, optional
+        A model name (``"jcg"``, ``"etsion"``, ``"brake"``): no further than that model is defined
+        (JCG's eq 35 ends at w_m* = 10017.5). None (default): the loading law alone.
+
+    Returns
+    -------
+    float
+        The smallest of 425 (unless extrapolating), the w* where a/R = 1, and the unloading
+        model's end (-).
+
+    Raises
+    ------
+    TypeError
+        ``extrapolate`` is not True or False.
+    ValueError
+        An unknown ``unloading``.
+
+    Notes
+    -----
+    The limits of docs/model.md section 4: w_m* = 425 (JGM section 3.3), a/R = 1 where the hardness
+    of JGM eq (12) ends (:func:`fastrest.omega_star_limit`), and ``OMEGA_END`` of the unloading
+    model (:mod:`fastrest.unloading`). :func:`v1_star_limit` gives the same limit as a speed.
+
+    Examples
+    --------
+    >>> from fastrest.limits import omega_limit
+    >>> omega_limit(0.005, 0.33)
+    425.0
+    >>> round(omega_limit(0.005, 0.33, extrapolate=True), 4)  # a/R = 1
+    1994.4444
+    >>> round(omega_limit(0.0005, 0.33, extrapolate=True, unloading="jcg"), 4)  # end of eq (35)
+    10017.5236
+    """
     e, n, x = float(eps_y), float(nu), check_bool(extrapolate, "extrapolate")
     return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
 
@@ -63,7 +105,8 @@ def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     Parameters
     ----------
     eps_y, nu : float
-        The material's eps_y = Sy/E' (-) and Poisson's ratio (-).
+        The material's eps_y = Sy/E' (-), > 0, and Poisson's ratio (-), 0 <= nu < 0.5. Not
+        validated here (as :func:`omega_limit`).
     extrapolate : bool, optional
         False: w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
     unloading : str or None, optional
@@ -75,11 +118,26 @@ def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     float
         V1*_max (-); ``math.inf`` if the law never ends.
 
+    Raises
+    ------
+    TypeError
+        ``extrapolate`` is not True or False.
+    ValueError
+        An unknown ``unloading``.
+
+    Notes
+    -----
+    The energy balance JGM eq (29), V1*^2 = F(w_m*) (:func:`fastrest.loading_energy`), at the
+    interference limit :func:`omega_limit` (docs/model.md section 4). Also exported as
+    :func:`fastrest.direct.v1_star_limit`; :meth:`fastrest.Impact.V_max` is the same in m/s.
+
     Examples
     --------
     >>> from fastrest.limits import v1_star_limit
     >>> round(v1_star_limit(0.005, 0.33), 2)
     1022.39
+    >>> round(v1_star_limit(0.005, 0.33, extrapolate=True), 2)
+    3851.32
     """
     w = omega_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf

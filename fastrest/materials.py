@@ -35,7 +35,27 @@ def poisson_factor(nu):
     Returns
     -------
     float or ndarray
-        C (dimensionless), from :func:`fastrest.critical.c_of_nu`.
+        C (dimensionless), from :func:`fastrest.critical.c_of_nu`; a float for a scalar ``nu``,
+        else an array of its shape.
+
+    Raises
+    ------
+    TypeError
+        ``nu`` is not a real number or array of them (strings, booleans, None, complex).
+    ValueError
+        Any ``nu`` outside [0, 0.5] or NaN.
+
+    Notes
+    -----
+    JGM eq (5), from Jackson & Green (2005).
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> round(fastrest.poisson_factor(0.33), 4)  # JGM Table 1: c = 1.651
+    1.651
+    >>> fastrest.poisson_factor([0.2, 0.5]).round(4)
+    array([1.5004, 1.8711])
     """
     nu = check_nu(nu, allow_half=True)
     if nu.ndim == 0:
@@ -60,7 +80,28 @@ def critical_velocity_ratios(nu):
     Returns
     -------
     dict
-        Keys ``"johnson"``, ``"wu"``, ``"thornton"`` (dimensionless).
+        Keys ``"johnson"``, ``"wu"``, ``"thornton"`` (dimensionless): floats for a scalar ``nu``,
+        arrays of its shape otherwise.
+
+    Raises
+    ------
+    TypeError
+        ``nu`` is not a real number or array of them.
+    ValueError
+        Any ``nu`` outside [0, 0.5] or NaN.
+
+    Notes
+    -----
+    JGM Table 2 lists these ratios for nu = 0.3 (1.028, 1.024, 3.314) and other nu; the formulas
+    use C(nu) of eq (5) (:func:`poisson_factor`). :func:`fastrest.models.yield_velocity_ratio`
+    gives the same ratios by model name.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> r = fastrest.critical_velocity_ratios(0.3)
+    >>> round(r["johnson"], 3), round(r["wu"], 3), round(r["thornton"], 3)
+    (1.028, 1.024, 3.314)
     """
     C = np.asarray(poisson_factor(nu))
 
@@ -88,7 +129,39 @@ class Material:
         Yield strength (Pa), finite and > 0. Use ``math.inf`` for a body that never yields
         (e.g. the alumina spheres of JGM Tables 3-4).
     rho : float, optional
-        Density (kg/m^3); needed only to compute a sphere's mass.
+        Density (kg/m^3), finite and > 0; needed only to compute a sphere's mass.
+
+    Attributes
+    ----------
+    E, nu, Sy, rho : float
+        The inputs as Python floats (``rho`` may be None). The instance is frozen and pickles.
+
+    Raises
+    ------
+    TypeError
+        A parameter is not a single real number (strings, booleans, None except for ``rho``,
+        arrays).
+    ValueError
+        E not finite and > 0; nu outside [0, 0.5); Sy not > 0 or NaN; rho not finite and > 0.
+
+    Notes
+    -----
+    Elastic-perfectly plastic (no hardening, no rate effects: docs/model.md section 8), as JGM
+    assume. The critical values of an impact (eqs 4-7, 23-28) need two bodies: see
+    :class:`fastrest.Impact`.
+
+    Examples
+    --------
+    JGM Table 1 steel (E = 200 GPa, nu = 0.33, Sy = 1.12 GPa):
+
+    >>> import fastrest
+    >>> steel = fastrest.Material(200e9, 0.33, 1.12e9, rho=7850.0)
+    >>> steel.nu, steel.Sy
+    (0.33, 1120000000.0)
+    >>> fastrest.Material(200e9, 0.5, 1.12e9)
+    Traceback (most recent call last):
+        ...
+    ValueError: nu (Poisson's ratio) must be in [0, 0.5); got 0.5
     """
 
     E: float
@@ -109,7 +182,16 @@ class Material:
 
     @property
     def yield_product(self):
-        """C(nu) * Sy (Pa): the smaller of two bodies' products yields first (JGM after eq 5)."""
+        """C(nu) Sy (Pa): of two bodies, the one with the smaller product yields first (JGM eq 5).
+
+        ``inf`` for a body that never yields (``Sy = math.inf``).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> round(fastrest.Material(200e9, 0.33, 1.12e9).yield_product / 1e9, 4)  # GPa
+        1.8491
+        """
         return poisson_factor(self.nu) * self.Sy
 
 

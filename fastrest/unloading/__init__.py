@@ -30,6 +30,8 @@ from . import brake, elastic, etsion, jcg
 __all__ = ["UnloadingModel", "MODELS", "NAMES", "JCG", "ETSION", "BRAKE", "get"]
 
 _UNITS = (jcg, etsion, brake)
+#: Integer codes of the unloading models for jitted code (``fastrest.jit.JCG`` etc.): JCG eq (35),
+#: Etsion eqs (33)-(34), Brake (2015); a model's code is its position in ``_UNITS``.
 JCG, ETSION, BRAKE = 0, 1, 2
 N_MODELS = len(_UNITS)
 
@@ -38,7 +40,9 @@ N_MODELS = len(_UNITS)
 class UnloadingModel:
     """An unloading model as Python code sees it (the kernels live in its module).
 
-    Attributes
+    Built once per registered unit (:data:`MODELS`); get one with :func:`get`. Frozen; pickles.
+
+    Parameters
     ----------
     name : str
         Public name (``unloading=`` argument).
@@ -52,6 +56,19 @@ class UnloadingModel:
         w_m* at which the model ends (``inf`` if never): past it e is undefined.
     cells_end : float
         Largest w_m* a curve tabulates (the cells cannot follow e near an end).
+
+    Notes
+    -----
+    ``"jcg"``: Jackson, Chusoipin & Green (2005) fit, JGM eq (35), ends at w_m* = 10017.5;
+    ``"etsion"``: Etsion, Kligerman & Kadin (2005), JGM eqs (33)-(34); ``"brake"``: Brake (2015) as
+    tmdsimpy implements it (docs/model.md section 11). The last two never end.
+
+    Examples
+    --------
+    >>> from fastrest import unloading
+    >>> m = unloading.get("jcg")
+    >>> m.code, m.short, m.equation, round(m.omega_end, 4)
+    (0, 'JCG', 'eq 35', 10017.5236)
     """
 
     name: str
@@ -64,6 +81,7 @@ class UnloadingModel:
     cells_end: float
 
 
+#: The registered models by name, in code order: {"jcg": UnloadingModel(...), "etsion": ..., ...}.
 MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END), float(u.CELLS_END))
           for k, u in enumerate(_UNITS)}
 #: Public names in code order.
@@ -71,7 +89,38 @@ NAMES = tuple(MODELS)
 
 
 def get(unloading):
-    """The :class:`UnloadingModel` called ``unloading`` (a name, or a model); ValueError otherwise."""
+    """The registered :class:`UnloadingModel` called ``unloading``.
+
+    Parameters
+    ----------
+    unloading : str or UnloadingModel
+        A model name, one of :data:`NAMES` (``"jcg"``, ``"etsion"``, ``"brake"``), or a model
+        (returned as registered).
+
+    Returns
+    -------
+    UnloadingModel
+
+    Raises
+    ------
+    ValueError
+        Anything else, including an integer code (the message lists the names).
+
+    Notes
+    -----
+    Every API taking ``unloading=`` asks here; JGM eq (35) is ``"jcg"``, eqs (33)-(34)
+    ``"etsion"``, Brake (2015) ``"brake"``.
+
+    Examples
+    --------
+    >>> from fastrest import unloading
+    >>> unloading.get("etsion").code == unloading.ETSION
+    True
+    >>> unloading.get("hertz")
+    Traceback (most recent call last):
+        ...
+    ValueError: unloading must be one of ('jcg', 'etsion', 'brake'); got 'hertz'
+    """
     if isinstance(unloading, UnloadingModel):
         return MODELS[unloading.name]
     if isinstance(unloading, str) and unloading in MODELS:
