@@ -38,7 +38,7 @@ from ._validation import as_float_array, check_bool, check_count, check_finite_p
 from .contact import W_SWITCH
 from .forward import P_table_forward, forward_data
 from .interpolation import cell_index, cell_polynomial
-from .limits import raise_interference_out_of_range, w_upper_model
+from .limits import omega_limit, raise_interference_out_of_range, w_upper_model
 from . import unloading as _unloading
 from .unloading import elastic
 
@@ -355,6 +355,11 @@ class ContactLaw:
         _force_path(self.data, state, w, out)
         if np.isnan(out).any():
             i = int(np.flatnonzero(np.isnan(out))[0])
+            if w[i] > self.w_max and self.w_max < omega_limit(self.eps_y, self.nu, extrapolate=self.extrapolate,
+                                                              unloading=self.unloading):
+                raise ValueError(f"interference = {float(w[i] * self.omega_c)!r} is beyond this law's w_max = "
+                                 f"{self.w_max!r} (in units of omega_c = {self.omega_c!r}): build it with a "
+                                 "larger w_max (contact_law(..., w_max=...))")
             raise_interference_out_of_range(max(w[i], self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
                                             self.extrapolate, "interference", self.unloading)
         return (out * self.P_c).reshape(x.shape)

@@ -350,7 +350,7 @@ class Impact:
         if np.any(over):
             raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", unloading,
                                V_c=self.V_c)
-        return v
+        return float(v) if v.ndim == 0 else v
 
     def max_interference(self, V1, *, extrapolate=False):
         """Maximum interference omega_m (m) for impact speed V1 (m/s): w_m* omega_c, JGM eq (29).

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ._jit import jit
-from ._validation import OMEGA_M_STAR_MAX, check_bool
+from ._validation import OMEGA_M_STAR_MAX, check_bool, check_eps_y, check_nu, real_scalar
 from .contact import omega_star_limit_kernel
 from .energy import f_star_kernel
 from . import unloading as _unloading
@@ -55,10 +55,9 @@ def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     Parameters
     ----------
     eps_y : float
-        Sy/E' (-), > 0. Not validated here (pass a valid material: the public APIs that call this
-        check it first).
+        Sy/E' (-), finite and > 0.
     nu : float
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5; not validated here either.
+        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5.
     extrapolate : bool, optional
         False (default): no further than w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
     unloading : str or UnloadingModel or None, optional
@@ -74,9 +73,9 @@ def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     Raises
     ------
     TypeError
-        ``extrapolate`` is not True or False.
+        ``eps_y`` or ``nu`` is not a real number, or ``extrapolate`` is not True or False.
     ValueError
-        An unknown ``unloading``.
+        ``eps_y`` or ``nu`` out of range, or an unknown ``unloading``.
 
     Notes
     -----
@@ -94,7 +93,10 @@ def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     >>> round(omega_limit(0.0005, 0.33, extrapolate=True, unloading="jcg"), 4)  # end of eq (35)
     10017.5236
     """
-    e, n, x = float(eps_y), float(nu), check_bool(extrapolate, "extrapolate")
+    e, n = real_scalar(eps_y, "eps_y"), real_scalar(nu, "nu")
+    check_eps_y(e)
+    check_nu(n)
+    x = check_bool(extrapolate, "extrapolate")
     return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
 
 
@@ -105,8 +107,7 @@ def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     Parameters
     ----------
     eps_y, nu : float
-        The material's eps_y = Sy/E' (-), > 0, and Poisson's ratio (-), 0 <= nu < 0.5. Not
-        validated here (as :func:`omega_limit`).
+        The material's eps_y = Sy/E' (-), finite and > 0, and Poisson's ratio (-), 0 <= nu < 0.5.
     extrapolate : bool, optional
         False: w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
     unloading : str or None, optional
@@ -121,9 +122,9 @@ def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     Raises
     ------
     TypeError
-        ``extrapolate`` is not True or False.
+        ``eps_y`` or ``nu`` is not a real number, or ``extrapolate`` is not True or False.
     ValueError
-        An unknown ``unloading``.
+        ``eps_y`` or ``nu`` out of range, or an unknown ``unloading``.
 
     Notes
     -----
@@ -139,7 +140,7 @@ def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     >>> round(v1_star_limit(0.005, 0.33, extrapolate=True), 2)
     3851.32
     """
-    w = omega_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
+    w = omega_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)  # validates
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
 
 

@@ -310,3 +310,38 @@ def test_impact_jcg_end_in_metres_per_second():
     with pytest.warns(fastrest.ExtrapolationWarning):
         assert 0.0 < imp.e(v_jcg * 1.01, "etsion", extrapolate=True) < 1.0
         assert imp.max_interference(v_ar * 0.999, extrapolate=True) > 0.0   # w_m does not depend on unloading
+
+
+def test_limits_validate_the_material():
+    """v1_star_limit / omega_limit are public (fastrest.direct.v1_star_limit): a bad material is a
+    named error, not a plausible limit (v1_star_limit(-1, 0.33) used to return 0.0923)."""
+    from fastrest.limits import omega_limit, v1_star_limit
+    for f in (omega_limit, v1_star_limit):
+        with pytest.raises(ValueError, match="eps_y"):
+            f(-1.0, 0.33)
+        with pytest.raises(ValueError, match="nu"):
+            f(0.005, 0.5)
+        with pytest.raises(TypeError, match="eps_y"):
+            f("a", 0.33)
+        with pytest.raises(TypeError):
+            f(0.005, 0.33, True)  # options are keyword-only
+
+
+def test_contact_law_names_its_own_w_max():
+    law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+    with pytest.raises(ValueError, match="w_max = 30.0"):
+        law.force([1.0, 40.0])
+    with pytest.raises(ValueError, match="425"):
+        fastrest.contact_law(0.005, 0.33).force([1.0, 440.0])
+
+
+def test_returned_energy_nan_in_nan_out():
+    from fastrest.unloading import elastic
+    assert math.isnan(elastic.returned_energy(math.nan, 10.0, 25.0, 2.0, 8.0))
+    assert elastic.returned_energy(1.0, 10.0, 25.0, 2.0, 8.0) == 0.0   # below w_res: nothing returned
+
+
+def test_impact_v1_star_scalar_is_a_python_float():
+    imp = fastrest.Impact(fastrest.Material(200e9, 0.33, 1.12e9, 7800), 0.01)
+    assert type(imp.v1_star(1.0)) is float
+    assert imp.v1_star([1.0, 2.0]).shape == (2,)

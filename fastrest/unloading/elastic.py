@@ -101,8 +101,8 @@ def returned_energy(w, w_max, p_max, w_res, delta):
     17.222975
     """
     x = w - w_res
-    if x <= 0.0:
-        return 0.0
+    if not x > 0.0:
+        return 0.0 if x <= 0.0 else math.nan  # NaN in, NaN out
     s = min((delta - (w_max - w)) / delta, 1.0) if w < w_max else 1.0
     return p_max * delta * s * s * math.sqrt(s)
 
