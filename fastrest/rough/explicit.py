@@ -1,0 +1,258 @@
+"""Explicit summit heights: the deepest approach of the flat and the sums over every summit.
+
+Summit i stands h_i = (z_i - z_top)/omega_c below the tallest one (h_i <= 0). With the tallest at
+w* = x, summit i is at w_i = h_i + x, and the approach solves the energy balance
+
+    G(x) = sum_i F(w_i) = E,    E = (V1/V_c)^2 = M V1^2 / (2 U_c)         (JGM eq 29, per summit)
+
+by Newton's method on G^0.4 = E^0.4 (exact in one step for one Hertzian summit), the slope from
+the total force, dG/dx = (5/2) sum_i P*(w_i), safeguarded by bisection on the bracket
+G(lo) < E <= G(hi).
+
+Near the onset of yield the dissipated energy is proportional to w_i - 1, which w_i = h_i + x
+cannot resolve when x is close to 1. The iteration therefore carries x and delta = x - 1 side by
+side (every step moves both by the same amount; each is accurate where it is small): summit i has
+w_i - 1 = h_i + delta, and, while the tallest summit is near the onset (|delta| < 1/16), the n_1
+summits above w* = 1/2 enter G counted from w* = 1,
+
+    G - E = sum_{w_i > 1/2} (F(w_i) - 1) + sum_{0 < w_i <= 1/2} F(w_i) - (E - n_1),
+
+with F - 1 formed from w_i - 1 and E - n_1 from the exact energy (:mod:`.common`). For one summit
+this solves (1 + delta)^2.5 - 1 = E - 1 to full relative accuracy in delta, as the single-sphere
+solver does; so for a cluster of summits around the onset. (Summits in contact below w* = 1/2
+still limit delta to an absolute ~1e-16 (their F carries the rounding of their heights).)
+
+Sums run in ``prange`` over fixed blocks of :data:`BLOCK` summits whose partial sums are added in
+block order: results do not depend on the number of threads.
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from .._jit import jit
+from .._threads import run_parallel
+from .common import (FAILED, MAX_ITER, NEEDS_TABLE, OK, ONSET_BAND, energy_excess, hertz_terms, jg_terms,
+                     summit_values)
+
+__all__ = ["BLOCK", "hertz_approach_kernel", "jg_approach_kernel", "hertz_approach_array",
+           "explicit_impacts_array", "hertz_estimate", "solve_impacts"]
+
+#: Summits per block of the parallel sums (partial sums added in block order: deterministic).
+BLOCK = 8192
+
+# the solver's state: the point (x, delta), the bracket ends (x and delta of each), the last step
+_X, _D, _LO_X, _LO_D, _HI_X, _HI_D, _DX_PREV = 0, 1, 2, 3, 4, 5, 6
+
+
+@jit(inline=True)
+def _add_blocks(part):
+    """Column totals of per-block partial sums, added in block order."""
+    tot = np.zeros(part.shape[1])
+    for b in range(part.shape[0]):
+        for k in range(part.shape[1]):
+            tot[k] += part[b, k]
+    return tot
+
+
+@jit(parallel=True)
+def _hertz_sums(h, x, delta):
+    """[sum of energy terms, sum of their magnitudes, sum P*, summits counted from w* = 1] with
+    every summit Hertzian (F = w^2.5; terms as :func:`.common.hertz_terms`)."""
+    n = h.size
+    nblock = (n + BLOCK - 1) // BLOCK
+    part = np.zeros((nblock, 4))
+    onset = abs(delta) < ONSET_BAND  # loop-invariant: the plain path costs what it always did
+    for b in prange(nblock):
+        s_f = s_abs = s_p = n_1 = 0.0  # accumulate in registers: rows of part share cache lines
+        for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
+            w = h[i] + x
+            if w > 0.0:
+                f, p, k = hertz_terms(w, h[i] + delta, onset)
+                s_f += f
+                s_abs += abs(f)
+                s_p += p
+                n_1 += k
+        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s_f, s_abs, s_p, n_1
+    return _add_blocks(part)
+
+
+@jit(parallel=True)
+def _jg_sums(data, h, x, delta):
+    """:func:`_hertz_sums` under the JG law (F and the slope P* from the forward table)."""
+    n = h.size
+    nblock = (n + BLOCK - 1) // BLOCK
+    part = np.zeros((nblock, 4))
+    onset = abs(delta) < ONSET_BAND  # loop-invariant: the plain path costs what it always did
+    for b in prange(nblock):
+        s_f = s_abs = s_p = n_1 = 0.0  # accumulate in registers: rows of part share cache lines
+        for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
+            w = h[i] + x
+            if w > 0.0:
+                f, p, k = jg_terms(data, w, h[i] + delta, onset)
+                s_f += f
+                s_abs += abs(f)
+                s_p += p
+                n_1 += k
+        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s_f, s_abs, s_p, n_1
+    return _add_blocks(part)
+
+
+@jit(parallel=True)
+def _impact_sums(data, h, x, delta):
+    """[sum P*, sum L, in contact, yielded] at the deepest approach (exact P*, JGM eqs 9, 14, 38)."""
+    n = h.size
+    nblock = (n + BLOCK - 1) // BLOCK
+    part = np.zeros((nblock, 4))
+    for b in prange(nblock):
+        s_p = s_l = n_c = n_y = 0.0
+        for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
+            w = h[i] + x
+            if w > 0.0:
+                d = h[i] + delta
+                _, p, _, loss = summit_values(data, w, d)
+                s_p += p
+                s_l += loss
+                n_c += 1.0
+                if d > 0.0:
+                    n_y += 1.0
+        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s_p, s_l, n_c, n_y
+    return _add_blocks(part)
+
+
+@jit(inline=True)
+def _start(x0, d0):
+    """Solver state at (x0, delta0 = x0 - 1), bracketed below by x = 0 (nothing in contact)."""
+    st = np.empty(7)
+    st[_X], st[_D] = x0, d0
+    st[_LO_X], st[_LO_D] = 0.0, -1.0
+    st[_HI_X], st[_HI_D] = np.inf, np.inf
+    st[_DX_PREV] = np.inf
+    return st
+
+
+@jit(inline=True)
+def _advance(st, s_terms, s_abs, p_sum, n_1, e_hi, e_lo):
+    """One safeguarded Newton step on G^0.4 = E^0.4 from the point in ``st``, whose sums are
+    (s_terms, s_abs, p_sum, n_1) (see :func:`_hertz_sums`); True when converged (the solution is
+    then the point in ``st``)."""
+    x, d = st[_X], st[_D]
+    excess = energy_excess(e_hi, e_lo, n_1)  # E - n_1
+    g = s_terms - excess  # G - E
+    if g >= 0.0:
+        st[_HI_X], st[_HI_D] = x, d
+    else:
+        st[_LO_X], st[_LO_D] = x, d
+    if g == 0.0:
+        return True
+    near = abs(d) < x  # x > 1/2: delta resolves the position better than x
+    scale = min(x, abs(d))
+    total = e_hi + g  # G
+    if total > 0.0 and p_sum > 0.0:
+        # the size of G's terms, in units of x: steps below it are rounding noise
+        scale += (s_abs + abs(excess)) / (2.5 * p_sum)
+        # G^0.4 - E^0.4 without cancellation
+        step = -e_hi**0.4 * math.expm1(0.4 * math.log1p(g / e_hi)) * total**0.6 / p_sum
+        dx = abs(step)
+        # converged: a step at rounding level, or steps no longer shrinking quadratically
+        done = dx <= 4e-16 * scale or (dx < 1e-12 * scale and dx >= 0.5 * st[_DX_PREV])
+        st[_DX_PREV] = dx
+        if near:
+            inside = st[_LO_D] < d + step and d + step < st[_HI_D]
+        else:
+            inside = st[_LO_X] < x + step and x + step < st[_HI_X]
+        if done or inside:
+            st[_X], st[_D] = x + step, d + step
+            return done
+    if st[_HI_X] == np.inf:  # no upper bracket yet: double x
+        st[_X], st[_D] = x + x, d + x
+        return False
+    width = st[_HI_D] - st[_LO_D] if near else st[_HI_X] - st[_LO_X]
+    st[_X] = 0.5 * (st[_LO_X] + st[_HI_X])
+    st[_D] = 0.5 * (st[_LO_D] + st[_HI_D])
+    return width <= 4e-16 * scale
+
+
+@jit
+def hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
+    """(status, x, delta) of the impact of energy e_hi + e_lo (over U_c) with every summit Hertzian.
+
+    The estimate (no table) that starts every JG solve and sizes its forward table. ``h``: summit
+    heights below the tallest over omega_c (<= 0); (x0, d0): start, w* of the tallest and w* - 1.
+    """
+    st = _start(x0, d0)
+    for _ in range(MAX_ITER):
+        t = _hertz_sums(h, st[_X], st[_D])
+        if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
+            return OK, st[_X], st[_D]
+    return FAILED, st[_X], st[_D]
+
+
+@jit
+def jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
+    """(status, x, delta) of the deepest approach under the JG law (JGM eq 29 summed over summits).
+
+    Trial points beyond the table (data.w_max) return NEEDS_TABLE with x the w* asked for. Once
+    the table reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and
+    NEEDS_TABLE means the solution itself is beyond the model. Arguments as
+    :func:`hertz_approach_kernel`.
+    """
+    w_table = data.w_max
+    w_cap = min(w_table, w_model)
+    st = _start(x0, d0)
+    for _ in range(MAX_ITER):
+        if st[_X] > w_cap:
+            if not (w_table >= w_model and st[_LO_X] < w_cap):
+                return NEEDS_TABLE, st[_X], st[_D]
+            st[_X], st[_D] = w_cap, w_cap - 1.0
+        t = _jg_sums(data, h, st[_X], st[_D])
+        if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
+            return (OK if st[_X] <= w_cap else NEEDS_TABLE), st[_X], st[_D]
+    return FAILED, st[_X], st[_D]
+
+
+@jit
+def hertz_approach_array(h, e_hi, e_lo, out):
+    """out[:, k] = :func:`hertz_approach_kernel` of impact k, started from the tallest summit alone
+    (x0 = E^0.4, with x0 - 1 from E - 1 without cancellation)."""
+    for k in range(e_hi.size):
+        x0 = e_hi[k]**0.4
+        d0 = x0 - 1.0
+        if x0 >= 0.5 and x0 <= 2.0:
+            d0 = math.expm1(0.4 * math.log1p(energy_excess(e_hi[k], e_lo[k], 1.0)))
+        out[0, k], out[1, k], out[2, k] = hertz_approach_kernel(h, e_hi[k], e_lo[k], x0, d0)
+
+
+@jit
+def explicit_impacts_array(data, h, e_hi, e_lo, x0, d0, w_model, out):
+    """out[:, k] = (status, w* needed, x, x, sum P*, sum L, in contact, yielded) of impact k.
+
+    x = w* of the tallest summit at the deepest approach (the same value serves as the position
+    and as the largest w*, the layout of the statistical solver's output).
+    """
+    for k in range(e_hi.size):
+        status, x, d = jg_approach_kernel(data, h, e_hi[k], e_lo[k], x0[k], d0[k], w_model)
+        out[0, k], out[1, k], out[2, k], out[3, k] = status, x, x, x
+        if status == OK:
+            t = _impact_sums(data, h, x, d)
+            for j in range(4):
+                out[4 + j, k] = t[j]
+
+
+def hertz_estimate(h, e_hi, e_lo):
+    """(x0, delta0) arrays: the approach of every impact with all summits Hertzian.
+
+    Raises RuntimeError if the solver fails (a bug: the Hertz balance always has a solution).
+    """
+    out = np.zeros((3, e_hi.size))
+    run_parallel(hertz_approach_array, None, h, e_hi, e_lo, out)
+    if np.any(out[0] != OK):
+        raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
+    return out[1].copy(), out[2].copy()
+
+
+def solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model):
+    """The (8, n) output of :func:`explicit_impacts_array` for the given forward table."""
+    out = np.zeros((8, e_hi.size))
+    run_parallel(explicit_impacts_array, None, data, h, e_hi, e_lo, x0, d0, w_model, out)
+    return out

@@ -1,0 +1,82 @@
+"""A surface's forward tables: built for its summits' material only as far as its impacts need."""
+import warnings
+
+import numpy as np
+
+from .. import forward as fw
+from .._validation import ValidityWarning
+from ..limits import interference_limit_message
+from ..unloading import unloading_code
+from .common import NEEDS_TABLE, OK
+
+__all__ = ["ForwardCache"]
+
+
+class ForwardCache:
+    """The :class:`fastrest.forward.ForwardData` of one material, one per unloading model, grown on
+    demand.
+
+    Parameters
+    ----------
+    eps_y : float
+        Sy/E' of the summits (-).
+    nu : float
+        Poisson's ratio of the summits (-).
+
+    Notes
+    -----
+    Tables built for different w_max hold bit-identical cells where both are defined
+    (:func:`fastrest.forward.forward_data`), so results never depend on which table the cache
+    happens to hold.
+    """
+
+    def __init__(self, eps_y, nu):
+        self.eps_y, self.nu = eps_y, nu
+        self._data = {}
+
+    def get(self, unloading="jcg", *, w_max=0.0, extrapolate=False):
+        """The table of model ``unloading`` serving at least w* <= ``w_max`` (-); it is rebuilt
+        larger (up to the model's range, without an error) when the one held is shorter.
+
+        Raises ValueError for an unknown unloading model.
+        """
+        code = unloading_code(unloading)
+        data = self._data.get(code)
+        if data is None or data.w_max < w_max:
+            lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ValidityWarning)  # issued once, by the surface
+                data = fw.forward_data(self.eps_y, self.nu, min(max(w_max, 2.0), lim), unloading,
+                                       extrapolate=extrapolate)
+            self._data[code] = data
+        return data
+
+    def solve(self, run, w_guess, unloading, extrapolate, where, note=None):
+        """``run(data, w_model)`` (a solver's (8, n) output: status, w* needed, ...), growing the
+        table until no impact needs more of it.
+
+        ``w_guess``: w* to build a missing table to; ``where(k)``: text naming impact k (its V1 and
+        M) and ``note(need)``: text added to the message, for the ValueError raised when an impact
+        needs a w* past the model's range. RuntimeError if the solver fails (a bug).
+        """
+        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
+        data = self._data.get(unloading_code(unloading))
+        if data is None:
+            data = self.get(unloading, w_max=min(w_guess, lim), extrapolate=extrapolate)
+        while True:
+            out = run(data, lim)
+            need = out[0] == NEEDS_TABLE
+            if not np.any(need):
+                break
+            w_need = float(out[1, need].max())
+            if data.w_max >= lim:  # the model's range ends first
+                k = int(np.flatnonzero(need)[0])
+                what = interference_limit_message(max(w_need, lim * (1 + 1e-15)), self.eps_y, self.nu,
+                                                  extrapolate)
+                raise ValueError(f"the impact at {where(k)} drives summits to a w* that {what}"
+                                 + (note(w_need) if note else ""))
+            data = self.get(unloading, w_max=min(lim, max(1.25 * w_need, 2.0 * data.w_max)),
+                            extrapolate=extrapolate)
+        if np.any(out[0] != OK):
+            raise RuntimeError("rough-surface solver did not converge (please report)")
+        return out
