@@ -193,7 +193,7 @@ def test_single_summit_keeps_relative_accuracy_at_the_onset_of_yield(model):
     M = U_c/2 makes V_c = sqrt(2 U_c/M) = 2 m/s exactly, so V1 = 2 V1* carries V1* = 1 + x
     exactly, where direct.loss_star is exact (it agrees with the 40-digit tests/reference.py). The
     solver used to form w* - 1 from w*: 1.1e-4 relative at x = 1e-12, 1.1e-7 at 1e-9, 1.4e-10 at
-    1e-6 (max over the 31 speeds); now 1.2e-15, 7.8e-16, 7.8e-16.
+    1e-6 (max over the 31 speeds); now 8.9e-16, 7.8e-16, 7.8e-16 (``python -m bench.rough_onset``).
     """
     s = rough.RoughSurface(STEEL, R_A, heights=[3e-7])
     M = s.U_c / 2
@@ -222,7 +222,8 @@ def test_single_summit_keeps_relative_accuracy_at_the_onset_of_yield(model):
 def test_summits_around_the_onset_keep_relative_accuracy(x):
     """Several summits: a cluster within a few x of the tallest (some just past w* = 1, some just
     short of it), other summits out of contact; and a tallest summit well into yield with a few
-    just past the onset beside summits in elastic contact. 40-digit reference (all Hertzian)."""
+    just past the onset beside summits in elastic contact. 40-digit reference (all Hertzian).
+    Measured <= 1.3e-15 (was up to 3.0e-4 at x = 1e-12; ``python -m bench.rough_onset``)."""
     s0 = rough.RoughSurface(STEEL, R_A, heights=[0.0])
     wc = s0.omega_c
     far = [-1.5, -2.0, -3.7]  # out of contact (in units of omega_c below the tallest)
