@@ -72,6 +72,19 @@ def several(h_units, w_top, M=1e-6):
     return err
 
 
+def sensitivity(x, M=1e-6):
+    """Relative change of the exact 1 - e_s^2 for one ulp of V1 (the last case's conditioning)."""
+    h_units, w_top = cases(x)["tallest at the onset, 2 elastic below w* = 1/2 (conditioning)"]
+    wc = rough.RoughSurface(STEEL, R_A, heights=[0.0]).omega_c
+    z = 3e-7 + np.array(h_units) * wc
+    s = rough.RoughSurface(STEEL, R_A, heights=z)
+    h = (z - z.max()) / s.omega_c
+    V1 = math.sqrt(2 * s.U_c * sum((w_top + hi) ** 2.5 for hi in h) / M)
+    a, _ = onset_reference(h, V1, M, s.U_c)
+    b, _ = onset_reference(h, np.nextafter(V1, 2 * V1), M, s.U_c)
+    return abs(b / a - 1)
+
+
 def main():
     print("| case | " + " | ".join(f"x = {x:g}" for x in ONSET) + " |")
     print("|---|" + "---|" * len(ONSET))
@@ -81,6 +94,8 @@ def main():
           + " | ".join(f"{single_any_mass(x):.1e}" for x in ONSET) + " |")
     for name in cases(1e-9):
         print(f"| {name} | " + " | ".join(f"{several(*cases(x)[name]):.1e}" for x in ONSET) + " |")
+    print("| (that case: change of the exact 1 - e_s^2 for 1 ulp of V1) | "
+          + " | ".join(f"{sensitivity(x):.1e}" for x in ONSET) + " |")
 
 
 if __name__ == "__main__":
