@@ -55,69 +55,66 @@ def _add_blocks(part):
     return tot
 
 
-@jit(parallel=True)
-def _hertz_sums(h, x, delta):
-    """[sum of energy terms, sum of their magnitudes, sum P*, summits counted from w* = 1] with
-    every summit Hertzian (F = w^2.5; terms as :func:`.common.hertz_terms`)."""
+@jit(inline=True)
+def _block_sums(row, law, h, x, delta):
+    """Column sums of ``row(law, w, d, onset)`` (4 values) over the summits in contact, w* = w =
+    h_i + x > 0 with d = h_i + delta = w* - 1, in fixed blocks added in block order."""
     n = h.size
     nblock = (n + BLOCK - 1) // BLOCK
     part = np.zeros((nblock, 4))
     onset = abs(delta) < ONSET_BAND  # loop-invariant: the plain path costs what it always did
     for b in prange(nblock):
-        s_f = s_abs = s_p = n_1 = 0.0  # accumulate in registers: rows of part share cache lines
+        s0 = s1 = s2 = s3 = 0.0  # accumulate in registers: rows of part share cache lines
         for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
             w = h[i] + x
             if w > 0.0:
-                f, p, k = hertz_terms(w, h[i] + delta, onset)
-                s_f += f
-                s_abs += abs(f)
-                s_p += p
-                n_1 += k
-        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s_f, s_abs, s_p, n_1
+                r0, r1, r2, r3 = row(law, w, h[i] + delta, onset)
+                s0 += r0
+                s1 += r1
+                s2 += r2
+                s3 += r3
+        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s0, s1, s2, s3
     return _add_blocks(part)
+
+
+@jit(inline=True)
+def _hertz_row(law, w, d, onset):
+    """(energy term, its magnitude, P*, counted from 1) of a Hertzian summit (``law`` unused)."""
+    f, p, k = hertz_terms(w, d, onset)
+    return f, abs(f), p, k
+
+
+@jit(inline=True)
+def _jg_row(law, w, d, onset):
+    """:func:`_hertz_row` under the JG law, ``law`` the forward table."""
+    f, p, k = jg_terms(law, w, d, onset)
+    return f, abs(f), p, k
+
+
+@jit(inline=True)
+def _impact_row(law, w, d, onset):
+    """(P*, L, 1, yielded) of a summit at the deepest approach (exact P*, JGM eqs 9, 14, 38)."""
+    _, p, _, loss = summit_values(law, w, d)
+    return p, loss, 1.0, (1.0 if d > 0.0 else 0.0)
+
+
+@jit(parallel=True)
+def _hertz_sums(h, x, delta):
+    """[sum of energy terms, sum of their magnitudes, sum P*, summits counted from w* = 1] with
+    every summit Hertzian (F = w^2.5; terms as :func:`.common.hertz_terms`)."""
+    return _block_sums(_hertz_row, None, h, x, delta)
 
 
 @jit(parallel=True)
 def _jg_sums(data, h, x, delta):
     """:func:`_hertz_sums` under the JG law (F and the slope P* from the forward table)."""
-    n = h.size
-    nblock = (n + BLOCK - 1) // BLOCK
-    part = np.zeros((nblock, 4))
-    onset = abs(delta) < ONSET_BAND  # loop-invariant: the plain path costs what it always did
-    for b in prange(nblock):
-        s_f = s_abs = s_p = n_1 = 0.0  # accumulate in registers: rows of part share cache lines
-        for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
-            w = h[i] + x
-            if w > 0.0:
-                f, p, k = jg_terms(data, w, h[i] + delta, onset)
-                s_f += f
-                s_abs += abs(f)
-                s_p += p
-                n_1 += k
-        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s_f, s_abs, s_p, n_1
-    return _add_blocks(part)
+    return _block_sums(_jg_row, data, h, x, delta)
 
 
 @jit(parallel=True)
 def _impact_sums(data, h, x, delta):
     """[sum P*, sum L, in contact, yielded] at the deepest approach (exact P*, JGM eqs 9, 14, 38)."""
-    n = h.size
-    nblock = (n + BLOCK - 1) // BLOCK
-    part = np.zeros((nblock, 4))
-    for b in prange(nblock):
-        s_p = s_l = n_c = n_y = 0.0
-        for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
-            w = h[i] + x
-            if w > 0.0:
-                d = h[i] + delta
-                _, p, _, loss = summit_values(data, w, d)
-                s_p += p
-                s_l += loss
-                n_c += 1.0
-                if d > 0.0:
-                    n_y += 1.0
-        part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s_p, s_l, n_c, n_y
-    return _add_blocks(part)
+    return _block_sums(_impact_row, data, h, x, delta)
 
 
 @jit(inline=True)
@@ -173,6 +170,33 @@ def _advance(st, s_terms, s_abs, p_sum, n_1, e_hi, e_lo):
     return width <= 4e-16 * scale
 
 
+@jit(inline=True)
+def _approach(sums, law, h, e_hi, e_lo, x0, d0, w_table, w_model):
+    """(status, x, delta) solving G = E with ``sums(law, h, x, delta)`` (see :func:`_hertz_sums`).
+
+    Trial points beyond ``w_table`` return NEEDS_TABLE with x the w* asked for. Once the table
+    reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and NEEDS_TABLE
+    means the solution itself is beyond the model.
+    """
+    w_cap = min(w_table, w_model)
+    st = _start(x0, d0)
+    for _ in range(MAX_ITER):
+        if st[_X] > w_cap:
+            if not (w_table >= w_model and st[_LO_X] < w_cap):
+                return NEEDS_TABLE, st[_X], st[_D]
+            st[_X], st[_D] = w_cap, w_cap - 1.0
+        t = sums(law, h, st[_X], st[_D])
+        if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
+            return (OK if st[_X] <= w_cap else NEEDS_TABLE), st[_X], st[_D]
+    return FAILED, st[_X], st[_D]
+
+
+@jit(inline=True)
+def _hertz_law_sums(law, h, x, delta):
+    """:func:`_hertz_sums` with the arguments of :func:`_jg_sums` (``law`` unused)."""
+    return _hertz_sums(h, x, delta)
+
+
 @jit
 def hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
     """(status, x, delta) of the impact of energy e_hi + e_lo (over U_c) with every summit Hertzian.
@@ -180,12 +204,7 @@ def hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
     The estimate (no table) that starts every JG solve and sizes its forward table. ``h``: summit
     heights below the tallest over omega_c (<= 0); (x0, d0): start, w* of the tallest and w* - 1.
     """
-    st = _start(x0, d0)
-    for _ in range(MAX_ITER):
-        t = _hertz_sums(h, st[_X], st[_D])
-        if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
-            return OK, st[_X], st[_D]
-    return FAILED, st[_X], st[_D]
+    return _approach(_hertz_law_sums, None, h, e_hi, e_lo, x0, d0, np.inf, np.inf)
 
 
 @jit
@@ -197,18 +216,7 @@ def jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
     NEEDS_TABLE means the solution itself is beyond the model. Arguments as
     :func:`hertz_approach_kernel`.
     """
-    w_table = data.w_max
-    w_cap = min(w_table, w_model)
-    st = _start(x0, d0)
-    for _ in range(MAX_ITER):
-        if st[_X] > w_cap:
-            if not (w_table >= w_model and st[_LO_X] < w_cap):
-                return NEEDS_TABLE, st[_X], st[_D]
-            st[_X], st[_D] = w_cap, w_cap - 1.0
-        t = _jg_sums(data, h, st[_X], st[_D])
-        if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
-            return (OK if st[_X] <= w_cap else NEEDS_TABLE), st[_X], st[_D]
-    return FAILED, st[_X], st[_D]
+    return _approach(_jg_sums, data, h, e_hi, e_lo, x0, d0, data.w_max, w_model)
 
 
 @jit

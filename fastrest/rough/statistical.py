@@ -128,64 +128,70 @@ def _node(g, zs_d, p, q, j):
     return w, wt * (_pdf(g, zs_d + w / g.rho_w) / g.rho_w)
 
 
-@jit
-def gw_hertz_sums_kernel(g, zs_d):
-    """(E[F], E[P*]) per summit with every summit Hertzian (F = w^2.5, P* = w^1.5 at any w*)."""
-    w_a, w_b = _w_range(g, zs_d)
+@jit(inline=True)
+def _expectations(term, law, g, zs_d, w_b):
+    """Per-summit expectations of the 4 values ``term(law, w, yielded)`` over the contacting
+    heights up to w* = w_b (composite Gauss-Legendre; ``yielded``: the panel lies above w* = 1)."""
+    w_a, w_top = _w_range(g, zs_d)
+    w_b = min(w_top, w_b)
     hw = PANEL_ZS * g.rho_w
-    e_f = e_p = 0.0
+    e0 = e1 = e2 = e3 = 0.0
     p = w_a
     while p < w_b:
         q = _panel_end(p, w_b, hw)
         for j in range(GL_ORDER):
             w, wt = _node(g, zs_d, p, q, j)
-            f, pf = hertz_fp(w)
-            e_f += wt * f
-            e_p += wt * pf
+            v0, v1, v2, v3 = term(law, w, p >= 1.0)
+            e0 += wt * v0
+            e1 += wt * v1
+            e2 += wt * v2
+            e3 += wt * v3
         p = q
+    return e0, e1, e2, e3
+
+
+@jit(inline=True)
+def _hertz_term(law, w, yielded):
+    """(F, P*, 0, 0) of a Hertzian summit (``law`` unused)."""
+    f, pf = hertz_fp(w)
+    return f, pf, 0.0, 0.0
+
+
+@jit(inline=True)
+def _jg_term(law, w, yielded):
+    """(F, P*, 0, 0) under the JG law: F and the slope P* from the forward table ``law``."""
+    f, pf = fw.FP_table_forward(law, w)
+    return f, pf, 0.0, 0.0
+
+
+@jit(inline=True)
+def _impact_term(law, w, yielded):
+    """(P*, L, 1, yielded) at the deepest approach (exact P*; JGM eqs 9, 14, 38)."""
+    _, pf, _, loss = summit_values(law, w, w - 1.0)
+    return pf, loss, 1.0, (1.0 if yielded else 0.0)
+
+
+@jit
+def gw_hertz_sums_kernel(g, zs_d):
+    """(E[F], E[P*]) per summit with every summit Hertzian (F = w^2.5, P* = w^1.5 at any w*)."""
+    e_f, e_p, _, _ = _expectations(_hertz_term, None, g, zs_d, np.inf)
     return e_f, e_p
 
 
 @jit
 def _jg_sums(data, g, zs_d, w_cap):
-    """(E[F], E[P*]) per summit under the JG law (F and the slope P* from the forward table)."""
-    w_a, w_b = _w_range(g, zs_d)
-    w_b = min(w_b, w_cap)  # rounding only: callers keep zs_d above _zs_covered(w_cap)
-    hw = PANEL_ZS * g.rho_w
-    e_f = e_p = 0.0
-    p = w_a
-    while p < w_b:
-        q = _panel_end(p, w_b, hw)
-        for j in range(GL_ORDER):
-            w, wt = _node(g, zs_d, p, q, j)
-            f, pf = fw.FP_table_forward(data, w)
-            e_f += wt * f
-            e_p += wt * pf
-        p = q
+    """(E[F], E[P*]) per summit under the JG law (F and the slope P* from the forward table); the
+    heights are integrated up to w* = w_cap (rounding only: callers keep zs_d above
+    _zs_covered(w_cap))."""
+    e_f, e_p, _, _ = _expectations(_jg_term, data, g, zs_d, w_cap)
     return e_f, e_p
 
 
 @jit
-def _impact_sums(data, g, zs_d, w_cap, out):
-    """out = [E P*, E L, P(contact), P(w* > 1), w* at the top of the integration] per summit."""
-    w_a, w_b = _w_range(g, zs_d)
-    w_b = min(w_b, w_cap)
-    hw = PANEL_ZS * g.rho_w
-    for k in range(4):
-        out[k] = 0.0
-    out[4] = w_b
-    p = w_a
-    while p < w_b:
-        q = _panel_end(p, w_b, hw)
-        for j in range(GL_ORDER):
-            w, wt = _node(g, zs_d, p, q, j)
-            _, pf, _, loss = summit_values(data, w, w - 1.0)
-            out[0] += wt * pf
-            out[1] += wt * loss
-            out[2] += wt
-            if p >= 1.0:
-                out[3] += wt
-        p = q
+def _impact_sums(data, g, zs_d, w_cap):
+    """(E P*, E L, P(contact), P(w* > 1), w* at the top of the integration) per summit."""
+    e_p, e_l, p_c, p_y = _expectations(_impact_term, data, g, zs_d, w_cap)
+    return e_p, e_l, p_c, p_y, min(_w_range(g, zs_d)[1], w_cap)
 
 
 # --- the approach: Newton on (N E[F])^0.4 with a bracket search -----------------------------------
@@ -253,25 +259,40 @@ def _coverage(g, w_cap):
     return zs_cov + 1e-12 * (1.0 + abs(zs_cov))
 
 
-@jit
-def gw_hertz_kernel(g, energy, zs0, w_cap):
-    """(status, zs_d, w* at the top) of the impact of energy ``energy`` (over U_c) with every
-    summit Hertzian: the estimate that starts every JG solve and sizes its table. Trial points
-    whose heights reach past ``w_cap`` are moved to it; NEEDS_TABLE: the solution is beyond it."""
+@jit(inline=True)
+def _approach(sums, law, g, energy, zs0, w_cap, clamp):
+    """(status, zs_d, w* at the top) solving N E[F] = energy with ``sums(law, g, zs_d, w_cap)`` ->
+    (E[F], E[P*]). Trial points whose heights reach past ``w_cap`` return NEEDS_TABLE, or with
+    ``clamp`` (w_cap is the model's end) are moved to it: NEEDS_TABLE then means the solution is
+    beyond it."""
     zs_cov = _coverage(g, w_cap)
     st = _start(g, zs0)
     for _ in range(MAX_ITER):
         if st[_ZS] < zs_cov:
-            if not st[_HI] > zs_cov:
+            if not (clamp and st[_HI] > zs_cov):
                 break
             st[_ZS] = zs_cov
-        e_f, e_p = gw_hertz_sums_kernel(g, st[_ZS])
+        e_f, e_p = sums(law, g, st[_ZS], w_cap)
         if _advance(st, g, e_f, e_p, energy):
             break
     else:
         return FAILED, st[_ZS], np.nan
     zs = st[_ZS]
     return (OK if zs >= zs_cov else NEEDS_TABLE), zs, (_zs_top(g, zs) - zs) * g.rho_w
+
+
+@jit(inline=True)
+def _hertz_sums(law, g, zs_d, w_cap):
+    """:func:`gw_hertz_sums_kernel` with the arguments of :func:`_jg_sums` (``law``, ``w_cap`` unused)."""
+    return gw_hertz_sums_kernel(g, zs_d)
+
+
+@jit
+def gw_hertz_kernel(g, energy, zs0, w_cap):
+    """(status, zs_d, w* at the top) of the impact of energy ``energy`` (over U_c) with every
+    summit Hertzian: the estimate that starts every JG solve and sizes its table. Trial points
+    whose heights reach past ``w_cap`` are moved to it; NEEDS_TABLE: the solution is beyond it."""
+    return _approach(_hertz_sums, None, g, energy, zs0, w_cap, True)
 
 
 @jit
@@ -282,22 +303,7 @@ def gw_approach_kernel(data, g, energy, zs0, w_model):
     it needs. Once the table reaches ``w_model`` (the model's end) trial points are moved to it,
     and NEEDS_TABLE means the solution itself is beyond the model.
     """
-    w_cap = min(data.w_max, w_model)
-    clamp = data.w_max >= w_model
-    zs_cov = _coverage(g, w_cap)
-    st = _start(g, zs0)
-    for _ in range(MAX_ITER):
-        if st[_ZS] < zs_cov:
-            if not (clamp and st[_HI] > zs_cov):
-                break
-            st[_ZS] = zs_cov
-        e_f, e_p = _jg_sums(data, g, st[_ZS], w_cap)
-        if _advance(st, g, e_f, e_p, energy):
-            break
-    else:
-        return FAILED, st[_ZS], np.nan
-    zs = st[_ZS]
-    return (OK if zs >= zs_cov else NEEDS_TABLE), zs, (_zs_top(g, zs) - zs) * g.rho_w
+    return _approach(_jg_sums, data, g, energy, zs0, min(data.w_max, w_model), data.w_max >= w_model)
 
 
 @jit
@@ -323,11 +329,8 @@ def _impact_one(data, g, energies, zs0, w_model, out, k):
     status, zs, need = gw_approach_kernel(data, g, energies[k], zs0[k], w_model)
     out[0, k], out[1, k], out[2, k] = status, need, zs
     if status == OK:
-        buf = np.empty(5)
-        _impact_sums(data, g, zs, min(data.w_max, w_model), buf)
-        out[3, k] = buf[4]
-        for j in range(4):
-            out[4 + j, k] = buf[j]
+        e_p, e_l, p_c, p_y, w_top = _impact_sums(data, g, zs, min(data.w_max, w_model))
+        out[3, k], out[4, k], out[5, k], out[6, k], out[7, k] = w_top, e_p, e_l, p_c, p_y
 
 
 @jit(parallel=True)
