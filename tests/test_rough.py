@@ -620,15 +620,27 @@ def test_docstring_examples_run():
     import doctest
     import importlib
 
-    for name in ("heights", "result", "surface", "sweeps"):
+    for name in ("common", "expectations", "explicit", "forward_cache", "heights", "result",
+                 "statistical", "surface", "sweeps"):
         mod = importlib.import_module(f"fastrest.rough.{name}")
         res = doctest.testmod(mod, raise_on_error=False, verbose=False)
         assert res.failed == 0 and res.attempted > 0, name
 
 
 def test_public_names():
+    """The package exports what it did (less reference_impact, now tests/rough_reference.py), each
+    name with a numpydoc docstring; every module's exported names have Examples."""
     assert set(rough.__all__) == {"RoughSurface", "GreenwoodWilliamson", "RoughImpact", "gaussian_summits",
                                   "sweep", "surface_from_params"}
     for name in rough.__all__:
         doc = getattr(rough, name).__doc__
         assert "Examples" in doc and ("Parameters" in doc or "Attributes" in doc), name
+    import importlib
+    import pkgutil
+
+    for info in pkgutil.iter_modules(rough.__path__):
+        mod = importlib.import_module(f"fastrest.rough.{info.name}")
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if callable(obj) and not hasattr(obj, "_fields"):  # functions and classes (not GWData)
+                assert "Examples" in (obj.__doc__ or ""), f"{info.name}.{name}"

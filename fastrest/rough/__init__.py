@@ -24,7 +24,8 @@ Where things are:
 * :mod:`.forward_cache`: a surface's forward tables (:mod:`fastrest.forward`), grown as impacts need;
 * :mod:`.heights`: :func:`gaussian_summits`, :class:`GreenwoodWilliamson` and its tabulation;
 * :mod:`.explicit`: the solver over explicit heights (parallel sums over summits);
-* :mod:`.statistical`: the solver over a height distribution (quadrature over heights);
+* :mod:`.statistical`: the solver over a height distribution, on the expectations over the
+  heights of :mod:`.expectations` (quadrature);
 * :mod:`.common`: what both share (one summit's terms, the impact energy);
 * :mod:`.sweeps`: :func:`sweep`, many surfaces here or on a Dask cluster.
 """

@@ -35,8 +35,7 @@ from .._threads import run_parallel
 from .common import (FAILED, MAX_ITER, NEEDS_TABLE, OK, ONSET_BAND, energy_excess, hertz_terms, jg_terms,
                      summit_values)
 
-__all__ = ["BLOCK", "hertz_approach_kernel", "jg_approach_kernel", "hertz_approach_array",
-           "explicit_impacts_array", "hertz_estimate", "solve_impacts"]
+__all__ = ["BLOCK", "hertz_estimate", "solve_impacts"]
 
 #: Summits per block of the parallel sums (partial sums added in block order: deterministic).
 BLOCK = 8192
@@ -198,7 +197,7 @@ def _hertz_law_sums(law, h, x, delta):
 
 
 @jit
-def hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
+def _hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
     """(status, x, delta) of the impact of energy e_hi + e_lo (over U_c) with every summit Hertzian.
 
     The estimate (no table) that starts every JG solve and sizes its forward table. ``h``: summit
@@ -208,38 +207,38 @@ def hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
 
 
 @jit
-def jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
+def _jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
     """(status, x, delta) of the deepest approach under the JG law (JGM eq 29 summed over summits).
 
     Trial points beyond the table (data.w_max) return NEEDS_TABLE with x the w* asked for. Once
     the table reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and
     NEEDS_TABLE means the solution itself is beyond the model. Arguments as
-    :func:`hertz_approach_kernel`.
+    :func:`_hertz_approach_kernel`.
     """
     return _approach(_jg_sums, data, h, e_hi, e_lo, x0, d0, data.w_max, w_model)
 
 
 @jit
-def hertz_approach_array(h, e_hi, e_lo, out):
-    """out[:, k] = :func:`hertz_approach_kernel` of impact k, started from the tallest summit alone
+def _hertz_approach_array(h, e_hi, e_lo, out):
+    """out[:, k] = :func:`_hertz_approach_kernel` of impact k, started from the tallest summit alone
     (x0 = E^0.4, with x0 - 1 from E - 1 without cancellation)."""
     for k in range(e_hi.size):
         x0 = e_hi[k]**0.4
         d0 = x0 - 1.0
         if x0 >= 0.5 and x0 <= 2.0:
             d0 = math.expm1(0.4 * math.log1p(energy_excess(e_hi[k], e_lo[k], 1.0)))
-        out[0, k], out[1, k], out[2, k] = hertz_approach_kernel(h, e_hi[k], e_lo[k], x0, d0)
+        out[0, k], out[1, k], out[2, k] = _hertz_approach_kernel(h, e_hi[k], e_lo[k], x0, d0)
 
 
 @jit
-def explicit_impacts_array(data, h, e_hi, e_lo, x0, d0, w_model, out):
+def _explicit_impacts_array(data, h, e_hi, e_lo, x0, d0, w_model, out):
     """out[:, k] = (status, w* needed, x, x, sum P*, sum L, in contact, yielded) of impact k.
 
     x = w* of the tallest summit at the deepest approach (the same value serves as the position
     and as the largest w*, the layout of the statistical solver's output).
     """
     for k in range(e_hi.size):
-        status, x, d = jg_approach_kernel(data, h, e_hi[k], e_lo[k], x0[k], d0[k], w_model)
+        status, x, d = _jg_approach_kernel(data, h, e_hi[k], e_lo[k], x0[k], d0[k], w_model)
         out[0, k], out[1, k], out[2, k], out[3, k] = status, x, x, x
         if status == OK:
             t = _impact_sums(data, h, x, d)
@@ -248,19 +247,86 @@ def explicit_impacts_array(data, h, e_hi, e_lo, x0, d0, w_model, out):
 
 
 def hertz_estimate(h, e_hi, e_lo):
-    """(x0, delta0) arrays: the approach of every impact with all summits Hertzian.
+    """The deepest approach of every impact with all summits Hertzian (no forward table).
 
-    Raises RuntimeError if the solver fails (a bug: the Hertz balance always has a solution).
+    Parameters
+    ----------
+    h : ndarray
+        Summit heights below the tallest over omega_c (-), <= 0, contiguous.
+    e_hi, e_lo : ndarray
+        Impact energies over U_c (-) as double plus correction (:func:`.common.energy_parts`).
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        x0: w* of the tallest summit (-); delta0 = x0 - 1 without cancellation (-).
+
+    Raises
+    ------
+    RuntimeError
+        If the solver fails (a bug: the Hertz balance always has a solution).
+
+    Notes
+    -----
+    Solves sum_i (h_i + x)^2.5 = E (JGM eq 29 with eq 19 per summit); the start of every JG solve
+    and the size of its table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fastrest.rough import explicit
+    >>> x0, d0 = explicit.hertz_estimate(np.array([0.0]), np.array([32.0]), np.array([0.0]))
+    >>> float(x0[0]), float(d0[0])
+    (4.0, 3.0)
     """
     out = np.zeros((3, e_hi.size))
-    run_parallel(hertz_approach_array, None, h, e_hi, e_lo, out)
+    run_parallel(_hertz_approach_array, None, h, e_hi, e_lo, out)
     if np.any(out[0] != OK):
         raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
     return out[1].copy(), out[2].copy()
 
 
 def solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model):
-    """The (8, n) output of :func:`explicit_impacts_array` for the given forward table."""
+    """Impacts on explicit summits under the JG law, with the forward table ``data``.
+
+    Parameters
+    ----------
+    data : fastrest.forward.ForwardData
+        Forward table of one summit (loading energy, force, unloading).
+    h : ndarray
+        Summit heights below the tallest over omega_c (-), <= 0.
+    e_hi, e_lo : ndarray
+        Impact energies over U_c (-), double plus correction (:func:`.common.energy_parts`).
+    x0, d0 : ndarray
+        Start of each solve: w* of the tallest summit and w* - 1 (:func:`hertz_estimate`).
+    w_model : float
+        w* (-) where the model ends (425, or a/R = 1 extrapolating).
+
+    Returns
+    -------
+    ndarray, shape (8, n)
+        Per impact: status (OK; NEEDS_TABLE: grow the table to the w* of row 1, or past the model's
+        end once the table reaches it; FAILED), w* needed, x, x (w* of the tallest summit at the
+        deepest approach, as position and as largest w*), sum P*, sum L, summits in contact,
+        summits yielded.
+
+    Notes
+    -----
+    sum_i F(w_i) = E at the deepest approach (JGM eq 29 per summit) and 1 - e_s^2 = sum_i L(w_i)/E
+    with L the energy a summit dissipates (eq 38 with the unloading model of ``data``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fastrest import forward
+    >>> from fastrest.rough import explicit
+    >>> data = forward.forward_data(0.005, 0.3, 40.0)
+    >>> h, e = np.array([0.0, -0.5]), np.array([50.0])
+    >>> x0, d0 = explicit.hertz_estimate(h, e, np.zeros(1))
+    >>> out = explicit.solve_impacts(data, h, e, np.zeros(1), x0, d0, 425.0)
+    >>> bool(out[0, 0] == 0 and out[6, 0] == 2.0 and 0.0 < out[5, 0] / 50.0 < 1.0)
+    True
+    """
     out = np.zeros((8, e_hi.size))
-    run_parallel(explicit_impacts_array, None, data, h, e_hi, e_lo, x0, d0, w_model, out)
+    run_parallel(_explicit_impacts_array, None, data, h, e_hi, e_lo, x0, d0, w_model, out)
     return out

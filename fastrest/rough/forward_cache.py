@@ -28,6 +28,13 @@ class ForwardCache:
     Tables built for different w_max hold bit-identical cells where both are defined
     (:func:`fastrest.forward.forward_data`), so results never depend on which table the cache
     happens to hold.
+
+    Examples
+    --------
+    >>> from fastrest.rough.forward_cache import ForwardCache
+    >>> cache = ForwardCache(0.005, 0.3)
+    >>> cache.get("jcg", w_max=30.0).w_max >= 30.0
+    True
     """
 
     def __init__(self, eps_y, nu):
@@ -35,10 +42,26 @@ class ForwardCache:
         self._data = {}
 
     def get(self, unloading="jcg", *, w_max=0.0, extrapolate=False):
-        """The table of model ``unloading`` serving at least w* <= ``w_max`` (-); it is rebuilt
-        larger (up to the model's range, without an error) when the one held is shorter.
+        """The table of one unloading model serving at least w* <= ``w_max``.
 
-        Raises ValueError for an unknown unloading model.
+        Parameters
+        ----------
+        unloading : {"jcg", "etsion", "brake"}
+            Unloading model (JGM eq 35, 33, or Brake's).
+        w_max : float
+            Largest w* (-) to serve; the held table is rebuilt larger when shorter (up to the
+            model's range: a larger w_max is cut there, not refused).
+        extrapolate : bool
+            The model's range is a/R = 1 rather than w* = 425.
+
+        Returns
+        -------
+        fastrest.forward.ForwardData
+
+        Raises
+        ------
+        ValueError
+            Unknown unloading model.
         """
         code = unloading_code(unloading)
         data = self._data.get(code)
@@ -52,12 +75,32 @@ class ForwardCache:
         return data
 
     def solve(self, run, w_guess, unloading, extrapolate, where, note=None):
-        """``run(data, w_model)`` (a solver's (8, n) output: status, w* needed, ...), growing the
-        table until no impact needs more of it.
+        """Run a solver, growing the table until no impact needs more of it.
 
-        ``w_guess``: w* to build a missing table to; ``where(k)``: text naming impact k (its V1 and
-        M) and ``note(need)``: text added to the message, for the ValueError raised when an impact
-        needs a w* past the model's range. RuntimeError if the solver fails (a bug).
+        Parameters
+        ----------
+        run : callable
+            ``run(data, w_model)`` -> the solver's (8, n) output (row 0 status, row 1 w* needed).
+        w_guess : float
+            w* (-) to build a missing table to.
+        unloading, extrapolate
+            As :meth:`get`.
+        where : callable
+            ``where(k)``: text naming impact k (its V1 and M), for messages.
+        note : callable, optional
+            ``note(need)``: text added to the message.
+
+        Returns
+        -------
+        ndarray
+            The solver's output once every impact is solved.
+
+        Raises
+        ------
+        ValueError
+            An impact drives summits past the model's range (w* = 425, or a/R = 1).
+        RuntimeError
+            The solver failed (a bug).
         """
         lim = fw.forward_limit(self.eps_y, self.nu, extrapolate)
         data = self._data.get(unloading_code(unloading))

@@ -13,7 +13,7 @@ import numpy as np
 
 from .._validation import check_finite_positive, real_scalar
 from ..interpolation import GAUSS_U, chebyshev_nodes, fit_cells
-from .statistical import GWData
+from .expectations import GWData
 
 __all__ = ["gaussian_summits", "GreenwoodWilliamson", "gw_data", "MIN_SUMMITS", "MAX_SUMMITS",
            "PDF_CELLS_PER_SIGMA"]
@@ -215,6 +215,18 @@ def gw_data(gw, omega_c):
     ------
     ValueError
         If the pdf is negative, not finite, or zero on its support.
+
+    Notes
+    -----
+    A user pdf is tabulated on degree-5 cells (:data:`PDF_CELLS_PER_SIGMA` per sigma) at
+    Gauss-Legendre nodes and normalised by the cells' exact integrals.
+
+    Examples
+    --------
+    >>> from fastrest.rough import heights
+    >>> g, sigma = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=2e-8, A_n=1e-4), 1e-8)
+    >>> g.rho_w, g.n_total, sigma
+    (2.0, 1000000.0, 2e-08)
     """
     if gw.pdf is None:
         sigma = float(gw.sigma)

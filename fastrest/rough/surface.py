@@ -25,10 +25,6 @@ __all__ = ["RoughSurface", "RHO_W_RANGE"]
 RHO_W_RANGE = (1e-6, 1e12)
 
 
-def _bad_energy_word(x):
-    return "too large" if not x < math.inf else "too small"
-
-
 class RoughSurface:
     """A rough surface of spherical summits of radius ``R_a``, struck by a rigid flat.
 
@@ -160,6 +156,14 @@ class RoughSurface:
 
         Equal to (E'/H) sqrt(sigma / R_a) with the hardness-like H = (pi/2) C(nu) Sy, since
         omega_c = (pi C Sy / (2 E'))^2 R_a (JGM eq 4); sigma is the summit-height standard deviation.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import rough
+        >>> s = rough.RoughSurface(fastrest.Material(200e9, 0.3, 1e9), 1e-4, gw=dict(eta=1e10, sigma=5e-8))
+        >>> round(s.plasticity_index, 3)
+        1.937
         """
         return math.sqrt(self.sigma / self.omega_c)
 
@@ -193,7 +197,22 @@ class RoughSurface:
         return self.impact_params.E_eff / H * math.sqrt(self.sigma / self.R_a)
 
     def params(self):
-        """Keyword arguments that rebuild this surface (``RoughSurface(**params)``), as a dict."""
+        """The arguments that rebuild this surface.
+
+        Returns
+        -------
+        dict
+            material, R_a (m), and heights (m) or gw: ``RoughSurface(**s.params())`` is an equal
+            surface (used by :func:`fastrest.rough.sweep` to ship surfaces to Dask).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import rough
+        >>> s = rough.RoughSurface(fastrest.Material(200e9, 0.3, 1e9), 1e-4, heights=[0.0, 1e-8])
+        >>> sorted(rough.RoughSurface(**s.params()).params())
+        ['R_a', 'heights', 'material']
+        """
         p = {"material": self.material, "R_a": self.R_a}
         if self.kind == "explicit":
             p["heights"] = self.heights
@@ -292,7 +311,7 @@ class RoughSurface:
             k = int(np.flatnonzero(bad)[0])
             raise ValueError(
                 f"the impact energy (1/2) M V1^2 at V1 = {float(flat[k])!r} m/s, M = {M!r} kg is "
-                f"{_bad_energy_word(e_hi[k])} against one summit's critical energy U_c = {self.U_c!r} J: "
+                f"{'too large' if not e_hi[k] < math.inf else 'too small'} against one summit's critical energy U_c = {self.U_c!r} J: "
                 f"(V1/V_c)^2 = {float(e_hi[k])!r} must be a finite, normal double")
         if flat.size == 0:
             raw = np.zeros((8, 0))
@@ -341,7 +360,7 @@ class RoughSurface:
 
     def _solve_statistical(self, energy, unloading, extrapolate, M):
         g = self._gwdata
-        self._check_gw_energy(energy, M)
+        statistical.check_resolved(g, energy, lambda k: f"V1 = {self._speed(energy[k], M)!r} m/s")
         # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
         # (a/R = 1) means the impact itself is past it
         w_end = fw.forward_limit(self.eps_y, self.nu, True)
@@ -359,22 +378,6 @@ class RoughSurface:
         return self._solve(
             lambda data, w_model: statistical.solve_impacts(data, g, energy, zs0, w_model),
             1.5 * float(hz[2].max()), energy, unloading, extrapolate, M)
-
-    def _check_gw_energy(self, energy, M):
-        """Gaussian heights: an impact so light that the flat stops where the height density
-        underflows (zs = z/sigma > ZS_UNDERFLOW) is outside what the statistical model resolves."""
-        g = self._gwdata
-        if g.kind != 0:
-            return
-        # Hertz energy with the flat at ZS_UNDERFLOW (JG's is the same there or larger)
-        low = g.n_total * statistical.gw_hertz_sums_kernel(g, statistical.ZS_UNDERFLOW)[0]
-        if np.any(energy < low):
-            k = int(np.flatnonzero(energy < low)[0])
-            raise ValueError(
-                f"the impact at V1 = {self._speed(energy[k], M)!r} m/s is too light for the statistical "
-                f"model: the flat would stop more than {statistical.ZS_UNDERFLOW:g} sigma above the "
-                f"mean summit plane, where the Gaussian height density exp(-zs^2/2) is below 1e-281 (N = "
-                f"{g.n_total:.4g} summits); (V1/V_c)^2 = {float(energy[k])!r} must be >= {low:.4g}")
 
     def _assemble(self, v, M, energy, raw):
         """The result fields from a solver output (rows: status, w* needed, position, w* at the
