@@ -282,14 +282,8 @@ def gw_impact_sums_kernel(data, g, zs_d, w_cap):
 
     Parameters
     ----------
-    data : fastrest.forward.ForwardData
-        Forward table of one summit (and its unloading model).
-    g : GWData
-        The surface's height statistics.
-    zs_d : float
-        Position of the flat over sigma (-).
-    w_cap : float
-        Heights are integrated up to w* = w_cap (-).
+    data, g, zs_d, w_cap
+        As :func:`gw_jg_sums_kernel` (``data`` also gives the unloading model).
 
     Returns
     -------
