@@ -644,3 +644,16 @@ def test_public_names():
             obj = getattr(mod, name)
             if callable(obj) and not hasattr(obj, "_fields"):  # functions and classes (not GWData)
                 assert "Examples" in (obj.__doc__ or ""), f"{info.name}.{name}"
+
+
+def test_surfaces_and_results_pickle():
+    """Surfaces (with the forward tables they hold) and results survive pickling unchanged."""
+    import pickle
+
+    for s in (rough.RoughSurface(STEEL, R_A, heights=rough.gaussian_summits(100, IP.omega_c, seed=1)),
+              rough.RoughSurface(STEEL, R_A, gw=dict(eta=1e10, sigma=IP.omega_c, A_n=1e-6))):
+        r = s.impact([0.01, 0.1], 1e-3)
+        s2 = pickle.loads(pickle.dumps(s))
+        assert s2.forward().w_max == s.forward().w_max
+        np.testing.assert_array_equal(s2.impact([0.01, 0.1], 1e-3).e, r.e)
+        np.testing.assert_array_equal(pickle.loads(pickle.dumps(r)).loss, r.loss)
