@@ -7,19 +7,17 @@ Measures, after warm-up (JIT compilation excluded; every kernel is loaded once f
   fresh RoughSurface ("cold": constructor, Hertz estimate and forward-table build included);
 * one impact on a statistical (Greenwood-Williamson) surface (target <= 1 ms), and per impact in
   a batch of 1000 speeds;
-* the brute-force path (``rough.reference_impact``: per-summit quadrature + scipy brentq) on 100
-  summits against ``RoughSurface.impact``, with the speed-up and the difference in e_s;
+* the brute-force path (``tests/rough_reference.reference_impact``: per-summit quadrature + scipy
+  brentq) on 100 summits against ``RoughSurface.impact``, with the speed-up and the difference in e_s;
 * building the forward table up to w* = 425, and the forward kernels per point inside ``@njit``.
 
-The machine alternates between a fast and a slow state and may be shared: cases are timed in
-interleaved rounds (shuffled order per round) and reported as median and minimum over rounds; the
-load average before and after the run is recorded. Standalone: imports nothing else from bench/.
+Timing, machine description and load averages come from the shared harness (:mod:`bench.timing`,
+:mod:`bench.report`, :mod:`bench.run`): cases are timed in interleaved rounds (shuffled order per
+round) and reported as median and minimum over rounds. Run from the repository root (the brute
+force lives in tests/).
 """
 import argparse
 import math
-import os
-import platform
-import random
 import time
 from pathlib import Path
 
@@ -29,6 +27,12 @@ import numpy as np
 import fastrest
 from fastrest import forward as fw
 from fastrest import rough
+from tests.rough_reference import reference_impact
+
+from .report import machine, versions
+from .run import loadavg
+from .timing import fmt_time as fmt
+from .timing import interleaved
 
 STEEL = fastrest.Material(E=200e9, nu=0.3, Sy=1e9)
 R_A = 100e-6
@@ -38,81 +42,18 @@ TARGET_EXPLICIT = 0.2
 TARGET_STAT = 1e-3
 
 
-def machine():
-    cpu = platform.processor() or platform.machine()
-    fields = {}
-    try:
-        for line in open("/proc/cpuinfo"):
-            key, _, val = line.partition(":")
-            key = key.strip()
-            if key in ("model name", "cpu family", "model", "flags") and key not in fields:
-                fields[key] = val.strip()
-    except OSError:
-        pass
-    if fields:
-        flags = fields.get("flags", "").split()
-        simd = "AVX-512" if "avx512f" in flags else ("AVX2" if "avx2" in flags else "no AVX2")
-        cpu = (f"{fields.get('model name', cpu)} (family {fields.get('cpu family', '?')}, model "
-               f"{fields.get('model', '?')}; {simd}{'; virtualised' if 'hypervisor' in flags else ''})")
-    return {
-        "cpu": cpu, "logical cpus": os.cpu_count(), "numba threads": nb.get_num_threads(),
-        "threading layer": _layer(), "python": platform.python_version(), "numpy": np.__version__,
-        "numba": nb.__version__, "fastrest": fastrest.__version__, "os": platform.platform(),
-    }
+def timed(cases, rounds, min_block=0.05):
+    """{name: fn} -> {name: (median, min) seconds per call}, interleaved rounds (bench.timing)."""
+    t = interleaved({k: (fn, 1) for k, fn in cases.items()}, rounds, min_block=min_block)
+    return {k: (v.median, v.min) for k, v in t.items()}
 
 
-def _layer():
-    @nb.njit(parallel=True)
-    def f(n):
-        s = 0.0
-        for i in nb.prange(n):
-            s += i
-        return s
-
-    f(10)
+def threading_layer():
+    """Numba's threading layer, once a parallel kernel has run (a rough impact runs one)."""
     try:
         return nb.threading_layer()
     except ValueError:
         return "?"
-
-
-def loadavg():
-    try:
-        return open("/proc/loadavg").read().split()[:3]
-    except OSError:
-        return ["?"] * 3
-
-
-def interleaved(cases, rounds, min_block=0.05):
-    """cases: {name: callable}. Returns {name: array of seconds per call, one per round}."""
-    inner = {}
-    for name, fn in cases.items():
-        fn()
-        t = time.perf_counter()
-        fn()
-        dt = time.perf_counter() - t
-        inner[name] = max(1, int(math.ceil(min_block / max(dt, 1e-9))))
-    out = {name: [] for name in cases}
-    names = list(cases)
-    for _ in range(rounds):
-        random.shuffle(names)
-        for name in names:
-            fn, k = cases[name], inner[name]
-            t = time.perf_counter()
-            for _ in range(k):
-                fn()
-            out[name].append((time.perf_counter() - t) / k)
-    return {k: np.array(v) for k, v in out.items()}
-
-
-def fmt(t):
-    if t >= 1.0:
-        return f"{t:.2f} s"
-    if t >= 1e-3:
-        return f"{t * 1e3:.1f} ms"
-    if t >= 1e-6:
-        return f"{t * 1e6:.0f} us"
-    return f"{t * 1e9:.1f} ns"
 
 
 def verdict(med, mn, target):
@@ -136,17 +77,17 @@ def bench_explicit(rounds, n=10**6, psi=2.0):
         info[label] = r
         cases[f"{label} warm"] = (lambda v=v: warm.impact(v, M))
         cases[f"{label} cold"] = (lambda v=v: rough.RoughSurface(STEEL, R_A, heights=z).impact(v, M))
-    t_ctor = interleaved({"ctor": lambda: rough.RoughSurface(STEEL, R_A, heights=z)}, rounds)["ctor"]
-    times = interleaved(cases, rounds, min_block=0.0)
+    t_ctor = timed({"ctor": lambda: rough.RoughSurface(STEEL, R_A, heights=z)}, rounds)["ctor"]
+    times = timed(cases, rounds, min_block=0.0)
     for label, v in scenes.items():
         r = info[label]
-        tw, tc = times[f"{label} warm"], times[f"{label} cold"]
+        (w_med, w_min), (c_med, c_min) = times[f"{label} warm"], times[f"{label} cold"]
         rows.append({
             "scene": label, "V1": v, "contact": int(r.n_contact), "yielded": int(r.n_yielded),
-            "e": r.e, "w_max": r.w_star_max, "warm_med": np.median(tw), "warm_min": tw.min(),
-            "cold_med": np.median(tc), "cold_min": tc.min(),
+            "e": r.e, "w_max": r.w_star_max, "warm_med": w_med, "warm_min": w_min,
+            "cold_med": c_med, "cold_min": c_min,
         })
-    return {"n": n, "psi": psi, "sigma": sigma, "rows": rows, "ctor": float(np.median(t_ctor))}
+    return {"n": n, "psi": psi, "sigma": sigma, "rows": rows, "ctor": t_ctor[0]}
 
 
 def bench_statistical(rounds):
@@ -163,16 +104,15 @@ def bench_statistical(rounds):
     for psi, s in surfaces.items():
         s.impact(batch_v, M)
         cases[(psi, "batch")] = (lambda s=s: s.impact(batch_v, M))
-    times = interleaved(cases, rounds)
+    times = timed(cases, rounds)
     for psi, s in surfaces.items():
         for v in (0.01, 1.0):
             r = s.impact(v, M)
-            t = times[(psi, v)]
-            rows.append({"psi": psi, "V1": v, "contact": r.n_contact, "e": r.e,
-                         "med": np.median(t), "min": t.min()})
-        t = times[(psi, "batch")] / batch_v.size
+            med, mn = times[(psi, v)]
+            rows.append({"psi": psi, "V1": v, "contact": r.n_contact, "e": r.e, "med": med, "min": mn})
+        med, mn = times[(psi, "batch")]
         rows.append({"psi": psi, "V1": "1000 speeds", "contact": math.nan, "e": math.nan,
-                     "med": np.median(t), "min": t.min()})
+                     "med": med / batch_v.size, "min": mn / batch_v.size})
     return rows
 
 
@@ -180,13 +120,12 @@ def bench_brute(rounds, n=100, psi=2.0, v=0.1):
     z = rough.gaussian_summits(n, psi**2 * OMEGA_C, seed=2)
     s = rough.RoughSurface(STEEL, R_A, heights=z)
     fast = s.impact(v, M)
-    ref = rough.reference_impact(STEEL, R_A, z, v, M)
-    times = interleaved({"fast": lambda: s.impact(v, M),
-                         "brute": lambda: rough.reference_impact(STEEL, R_A, z, v, M)},
-                        max(3, rounds // 2))
-    return {"n": n, "V1": v, "contact": fast.n_contact, "fast": np.median(times["fast"]),
-            "brute": np.median(times["brute"]), "fast_min": times["fast"].min(),
-            "brute_min": times["brute"].min(), "de": abs(fast.e - ref["e"]), "e": fast.e}
+    ref = reference_impact(STEEL, R_A, z, v, M)
+    times = timed({"fast": lambda: s.impact(v, M),
+                   "brute": lambda: reference_impact(STEEL, R_A, z, v, M)}, max(3, rounds // 2))
+    return {"n": n, "V1": v, "contact": fast.n_contact, "fast": times["fast"][0],
+            "brute": times["brute"][0], "fast_min": times["fast"][1],
+            "brute_min": times["brute"][1], "de": abs(fast.e - ref["e"]), "e": fast.e}
 
 
 @nb.njit
@@ -233,7 +172,7 @@ def _loop_values(data, w):
 
 def bench_forward(rounds):
     eps, nu = STEEL.Sy / (STEEL.E / (1 - STEEL.nu**2)), STEEL.nu
-    build = interleaved({"build": lambda: fw.forward_data(eps, nu, 425.0)}, rounds)["build"]
+    build = timed({"build": lambda: fw.forward_data(eps, nu, 425.0)}, rounds)["build"]
     data = fw.forward_data(eps, nu, 425.0)
     w_jg = np.random.default_rng(0).uniform(1.9, 425.0, 10**6)
     w_h = np.random.default_rng(0).uniform(0.0, 1.9, 10**6)
@@ -242,10 +181,9 @@ def bench_forward(rounds):
                      ("FP_table_forward", _loop_FPt), ("forward_values", _loop_values)):
         cases[(name, "JG")] = (lambda fn=fn: fn(data, w_jg))
         cases[(name, "Hertz")] = (lambda fn=fn: fn(data, w_h))
-    times = interleaved(cases, rounds)
-    per = {k: np.median(v) / 1e6 for k, v in times.items()}
-    return {"build": float(np.median(build)), "build_min": float(build.min()),
-            "cells": data.f_rows.shape[0], "per_point": per}
+    times = timed(cases, rounds)
+    per = {k: v[0] / 1e6 for k, v in times.items()}
+    return {"build": build[0], "build_min": build[1], "cells": data.f_rows.shape[0], "per_point": per}
 
 
 def report(m, load0, load1, ex, st, br, fo, quick):
@@ -257,7 +195,7 @@ def report(m, load0, load1, ex, st, br, fo, quick):
     L.append("## Machine\n")
     for k, v in m.items():
         L.append(f"- {k}: {v}")
-    L.append(f"- load average before / after: {' '.join(load0)} / {' '.join(load1)} "
+    L.append(f"- load average before / after: {load0} / {load1} "
              "(other work on the machine slows parallel regions; see below)\n")
     L.append(f"Scene: steel summits (E = 200 GPa, nu = 0.3, Sy = 1 GPa), R_a = 100 um "
              f"(omega_c = {OMEGA_C * 1e9:.2f} nm), rigid flat of M = {M} kg, JCG unloading.\n")
@@ -287,7 +225,7 @@ def report(m, load0, load1, ex, st, br, fo, quick):
     L.append("")
     L.append("## Brute force against the fast path\n")
     L.append(f"{br['n']} explicit summits, V1 = {br['V1']} m/s ({br['contact']} in contact, e_s = "
-             f"{br['e']:.6f}). Brute force: `rough.reference_impact` (per-summit "
+             f"{br['e']:.6f}). Brute force: `tests/rough_reference.reference_impact` (per-summit "
              "`energy.f_star_kernel` quadrature, `scipy.optimize.brentq`).\n")
     L.append("| path | time | speed-up |")
     L.append("|---|---|---|")
@@ -325,14 +263,14 @@ def main(argv=None):
     ap.add_argument("--out", default=str(Path(__file__).with_name("ROUGH.md")))
     a = ap.parse_args(argv)
     rounds = 3 if a.quick else 9
-    random.seed(0)
-    m = machine()
     load0 = loadavg()
     ex = bench_explicit(rounds)
     st = bench_statistical(rounds)
     br = bench_brute(rounds)
     fo = bench_forward(rounds)
     load1 = loadavg()
+    m = {**machine(), **versions(), "numba threads (used)": nb.get_num_threads(),
+         "threading layer": threading_layer()}
     text = report(m, load0, load1, ex, st, br, fo, a.quick)
     Path(a.out).write_text(text)
     print(text)

@@ -139,8 +139,6 @@ def _targets():
         lambda **k: rough.RoughSurface(steel, 1e-4, gw=k).impact(1e-3, 1e-3))
     add("RoughSurface.impact", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: surf.impact(**k))
     add("rough.sweep", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: rough.sweep([surf], **k))
-    add("rough.reference_impact", dict(R_a=1e-4, V1=1e-3, M=1e-3),
-        lambda **k: rough.reference_impact(steel, heights=[0.0, 1e-8], **k))
     return T
 
 

@@ -1,0 +1,404 @@
+"""The user's side of rough surfaces: :class:`RoughSurface` (input checks, then the solvers of
+:mod:`.explicit` and :mod:`.statistical` on forward tables from :mod:`.forward_cache`)."""
+import math
+import sys
+
+import numpy as np
+
+from .. import forward as fw
+from .._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool,
+                           check_finite_positive, real_scalar, warn, warn_if_outside_validated)
+from ..limits import interference_limit_message
+from ..materials import Impact, Material
+from ..unloading import unloading_code
+from . import explicit, statistical
+from .common import NEEDS_TABLE, OK, energy_parts
+from .forward_cache import ForwardCache
+from .heights import GreenwoodWilliamson, gw_data
+from .result import RoughImpact
+
+__all__ = ["RoughSurface", "RHO_W_RANGE"]
+
+#: Range of sigma/omega_c (the plasticity index squared) where the statistical model is computed:
+#: heights enter the quadrature as w* = (zs - zs_d) sigma/omega_c, which loses the resolution of zs
+#: (relative 1e-16 w*/(sigma/omega_c)) when sigma/omega_c is tiny.
+RHO_W_RANGE = (1e-6, 1e12)
+
+
+class RoughSurface:
+    """A rough surface of spherical summits of radius ``R_a``, struck by a rigid flat.
+
+    Every summit follows the JGM single-sphere law on loading and unloads elastically; summits do
+    not interact and the bulk under them does not deform (Greenwood-Williamson assumptions).
+
+    Parameters
+    ----------
+    material : fastrest.Material
+        The surface's (summits') material; the flat is rigid.
+    R_a : float
+        Summit radius of curvature (m), > 0.
+    heights : array_like, optional
+        Explicit summit heights (m), any datum, finite, at least one. The mean summit plane is
+        their mean; d_min is reported from it.
+    gw : GreenwoodWilliamson or dict, optional
+        Statistical description (summit density, height standard deviation, nominal area, pdf).
+        Exactly one of ``heights`` and ``gw``.
+
+    Attributes
+    ----------
+    impact_params : fastrest.Impact
+        One summit against the rigid flat (its E_eff, omega_c, P_c, U_c, eps_y, nu).
+    eps_y, nu : float
+        Sy/E' (-) and Poisson's ratio (-) of the summits.
+    omega_c, P_c, U_c : float
+        Critical interference (m), force (N) and energy (J) of one summit (JGM eqs 4, 6, 24).
+    sigma : float
+        Standard deviation of the summit heights (m) (of the given heights, or of the model).
+    n_summits : int or float
+        Number of summits (N = eta A_n for a statistical surface).
+    kind : str
+        "explicit" or "statistical".
+
+    Raises
+    ------
+    TypeError
+        If ``material`` is not a Material, ``gw`` not a GreenwoodWilliamson or dict, or a number
+        is not real.
+    ValueError
+        For R_a or heights out of range, neither or both of ``heights`` and ``gw``, or
+        sigma/omega_c outside :data:`RHO_W_RANGE` (statistical).
+
+    Warns
+    -----
+    ValidityWarning
+        Material outside the validated eps_y, nu range.
+
+    Notes
+    -----
+    Summit i is at w_i* = (z_i - d)/omega_c with the flat at height d; the deepest approach solves
+    (1/2) M V1^2 = U_c sum_i F(w_i) (JGM eq 29 summed over summits) and the energy returned is
+    U_c sum_i R(w_i) (eq 38 per summit). Derivation and numerics: docs/rough.md.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import rough
+    >>> steel = fastrest.Material(E=200e9, nu=0.3, Sy=1e9)
+    >>> s = rough.RoughSurface(steel, 100e-6, gw=dict(eta=1e10, sigma=50e-9, A_n=1e-4))
+    >>> 0.0 < s.impact(0.1, 0.01).e < 1.0
+    True
+    """
+
+    def __init__(self, material, R_a, heights=None, gw=None):
+        if not isinstance(material, Material):
+            raise TypeError("material must be a fastrest.Material")
+        self.material = material
+        self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
+        try:
+            self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
+        except ValueError as exc:
+            raise ValueError(f"R_a = {self.R_a!r} m: {exc}") from None
+        if (heights is None) == (gw is None):
+            raise ValueError("give exactly one of heights= (explicit summits) and gw= (statistical)")
+        ip = self.impact_params
+        self.eps_y, self.nu = float(ip.eps_y), float(ip.nu)
+        warn_if_outside_validated(self.eps_y, self.nu)
+        self.omega_c, self.P_c, self.U_c = ip.omega_c, ip.P_c, ip.U_c
+        self._tables = ForwardCache(self.eps_y, self.nu)
+        if heights is not None:
+            self._init_explicit(heights)
+        else:
+            self._init_statistical(gw)
+
+    def _init_explicit(self, heights):
+        z = np.array(as_float_array(heights, "heights"), dtype=np.float64).ravel()
+        if z.size == 0:
+            raise ValueError("heights is empty: a surface needs at least one summit")
+        if not np.all(np.isfinite(z)):
+            raise ValueError("heights must be finite (m)")
+        self.kind, self.heights, self.gw = "explicit", z, None
+        self.z_top = float(z.max())
+        with np.errstate(over="ignore", invalid="ignore"):
+            self.z_mean = float(z.mean())
+            self.sigma = float(z.std())
+        if not (math.isfinite(self.sigma) and math.isfinite(self.z_mean)):
+            raise ValueError("heights span more than the range of a float64 (m): their standard "
+                             "deviation overflows")
+        self.n_summits = z.size
+        self._h = np.ascontiguousarray((z - self.z_top) / self.omega_c)
+
+    def _init_statistical(self, gw):
+        if isinstance(gw, dict):
+            gw = GreenwoodWilliamson(**gw)
+        if not isinstance(gw, GreenwoodWilliamson):
+            raise TypeError("gw must be a GreenwoodWilliamson or a dict of its parameters")
+        self.kind, self.heights, self.gw = "statistical", None, gw
+        self.n_summits = gw.n_summits
+        self._gwdata, self.sigma = gw_data(gw, self.omega_c)
+        r = self._gwdata.rho_w
+        if not (RHO_W_RANGE[0] <= r <= RHO_W_RANGE[1]):
+            raise ValueError(
+                f"sigma / omega_c = {r!r} (sigma = {self.sigma!r} m, omega_c = {self.omega_c!r} m of a "
+                f"summit of radius R_a = {self.R_a!r} m) is outside [{RHO_W_RANGE[0]:g}, "
+                f"{RHO_W_RANGE[1]:g}], where the statistical model is computed: below, all summits "
+                "have practically one height (use explicit heights=); above, the height "
+                "distribution is wider than the model's w* range by many orders of magnitude")
+
+    def __repr__(self):
+        desc = (f"{self.n_summits} summits" if self.kind == "explicit"
+                else f"GW eta={self.gw.eta!r}, A_n={self.gw.A_n!r}")
+        return (f"RoughSurface({self.material!r}, R_a={self.R_a!r}, {desc}, sigma={self.sigma!r}, "
+                f"psi={self.plasticity_index:.4g})")
+
+    @property
+    def plasticity_index(self):
+        """psi = sqrt(sigma / omega_c) (-): Jackson & Green's form of the Greenwood-Williamson index.
+
+        Equal to (E'/H) sqrt(sigma / R_a) with the hardness-like H = (pi/2) C(nu) Sy, since
+        omega_c = (pi C Sy / (2 E'))^2 R_a (JGM eq 4); sigma is the summit-height standard deviation.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import rough
+        >>> s = rough.RoughSurface(fastrest.Material(200e9, 0.3, 1e9), 1e-4, gw=dict(eta=1e10, sigma=5e-8))
+        >>> round(s.plasticity_index, 3)
+        1.937
+        """
+        return math.sqrt(self.sigma / self.omega_c)
+
+    def plasticity_index_gw(self, H):
+        """Greenwood & Williamson's plasticity index psi = (E'/H) sqrt(sigma / R_a) (-).
+
+        Parameters
+        ----------
+        H : float
+            Hardness (Pa), > 0.
+
+        Returns
+        -------
+        float
+            psi (-); equal to :attr:`plasticity_index` for H = (pi/2) C(nu) Sy.
+
+        Raises
+        ------
+        ValueError
+            If H is not finite and > 0.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import rough
+        >>> s = rough.RoughSurface(fastrest.Material(200e9, 0.3, 1e9), 1e-4, heights=[0.0, 1e-7])
+        >>> s.plasticity_index_gw(2.8e9) > 0
+        True
+        """
+        H = float(check_finite_positive(H, "H", "(Pa, hardness)"))
+        return self.impact_params.E_eff / H * math.sqrt(self.sigma / self.R_a)
+
+    def params(self):
+        """The arguments that rebuild this surface.
+
+        Returns
+        -------
+        dict
+            material, R_a (m), and heights (m) or gw: ``RoughSurface(**s.params())`` is an equal
+            surface (used by :func:`fastrest.rough.sweep` to ship surfaces to Dask).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import rough
+        >>> s = rough.RoughSurface(fastrest.Material(200e9, 0.3, 1e9), 1e-4, heights=[0.0, 1e-8])
+        >>> sorted(rough.RoughSurface(**s.params()).params())
+        ['R_a', 'heights', 'material']
+        """
+        p = {"material": self.material, "R_a": self.R_a}
+        if self.kind == "explicit":
+            p["heights"] = self.heights
+        else:
+            p["gw"] = self.gw
+        return p
+
+    def forward(self, unloading="jcg", *, w_max=0.0, extrapolate=False):
+        """The surface's cached forward table: :meth:`fastrest.rough.forward_cache.ForwardCache.get`.
+
+        Parameters
+        ----------
+        unloading : {"jcg", "etsion", "brake"}
+            Unloading model (a table per model).
+        w_max : float
+            Largest w* (-) the table must serve; the cached table is rebuilt larger if needed.
+        extrapolate : bool
+            Allow w_max past 425 (up to a/R = 1).
+
+        Returns
+        -------
+        ForwardData
+            Loading energy, force and unloading of one summit, JGM eqs (9), (14), (19), (25),
+            (33)/(35), (38) (:mod:`fastrest.forward`).
+
+        Raises
+        ------
+        ValueError
+            Unknown unloading model, or w_max past the model's range.
+        """
+        return self._tables.get(unloading, w_max=w_max, extrapolate=extrapolate)
+
+    def impact(self, V1, M, unloading="jcg", *, extrapolate=False):
+        """Impact of a rigid flat of mass ``M`` at speed ``V1`` on the surface.
+
+        Parameters
+        ----------
+        V1 : float or array_like
+            Normal approach speed (m/s), finite and > 0 (at V1 = 0 nothing touches: ValueError).
+        M : float
+            Mass of the flat (kg), > 0 (against a fixed surface; use the reduced mass for two free
+            bodies).
+        unloading : {"jcg", "etsion", "brake"}
+            Residual interference model of every summit, JGM eq (35), (33) or Brake's
+            (:mod:`fastrest.unloading`).
+        extrapolate : bool
+            Allow summits past w* = 425 (JGM's range), up to a/R = 1.
+
+        Returns
+        -------
+        RoughImpact
+            e_s, 1 - e_s^2, deepest approach, force, contact counts, energies (shaped as V1).
+
+        Raises
+        ------
+        ValueError
+            Invalid input, an impact that drives summits past the model's range, or (statistical)
+            an impact too light for the height distribution to resolve.
+        TypeError
+            Non-numeric V1 or M, or a non-boolean extrapolate.
+
+        Warns
+        -----
+        ExtrapolationWarning
+            With ``extrapolate=True``, when summits pass w* = 425.
+
+        Notes
+        -----
+        With E = (V1/V_c)^2 = M V1^2/(2 U_c): sum_i F(w_i) = E at the deepest approach (JGM eq 29
+        per summit) and 1 - e_s^2 = sum_i L(w_i)/E, L = F - R with R from eq (38). Explicit
+        summits keep the relative accuracy of 1 - e_s^2 near the onset of yield (the solver
+        carries w* - 1 of the tallest summit, :mod:`fastrest.rough.explicit`).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import rough
+        >>> s = rough.RoughSurface(fastrest.Material(200e9, 0.3, 1e9), 1e-4, heights=[0.0, 1e-8, 3e-8])
+        >>> r = s.impact([0.01, 0.1], 1e-3)
+        >>> bool(r.e[0] > r.e[1])
+        True
+        """
+        unloading_code(unloading)
+        M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
+        extrapolate = check_bool(extrapolate, "extrapolate")
+        v = as_float_array(V1, "V1")
+        shape = v.shape
+        flat = np.ascontiguousarray(v.ravel())
+        bad = ~(np.isfinite(flat) & (flat > 0))
+        if np.any(bad):
+            raise ValueError(f"V1 must be finite and > 0 (m/s); got {flat[bad][0]!r} (at V1 = 0 no "
+                             "summit is ever touched and e_s is undefined)")
+        e_hi, e_lo = energy_parts(flat, M, self.U_c)  # (V1/V_c)^2: impact energy over U_c
+        bad = ~(np.isfinite(e_hi) & (e_hi >= sys.float_info.min))
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            raise ValueError(
+                f"the impact energy (1/2) M V1^2 at V1 = {float(flat[k])!r} m/s, M = {M!r} kg is "
+                f"{'too large' if not e_hi[k] < math.inf else 'too small'} against one summit's critical energy U_c = {self.U_c!r} J: "
+                f"(V1/V_c)^2 = {float(e_hi[k])!r} must be a finite, normal double")
+        if flat.size == 0:
+            raw = np.zeros((8, 0))
+        elif self.kind == "explicit":
+            raw = self._solve_explicit(e_hi, e_lo, unloading, extrapolate, M)
+        else:
+            raw = self._solve_statistical(e_hi, unloading, extrapolate, M)
+        out = self._assemble(flat, M, e_hi, raw)
+        if extrapolate and np.any(out["w_star_max"] > OMEGA_M_STAR_MAX):
+            warn(f"summits loaded past w* = {OMEGA_M_STAR_MAX:g}, the largest interference "
+                 "JGM computed; the JG law is not validated there", ExtrapolationWarning)
+
+        def shaped(a):
+            a = a.reshape(shape)
+            return a.item() if a.ndim == 0 else a
+
+        return RoughImpact(V1=shaped(flat), M=M, unloading=unloading, kind=self.kind,
+                           **{k: shaped(a) for k, a in out.items()})
+
+    # --- solving: a Hertz estimate, then the JG law on a forward table grown as needed -----------
+
+    def _speed(self, energy, M):
+        """V1 (m/s) of the impact energy ``energy`` (over U_c): for messages."""
+        return float(np.sqrt(2.0 * self.U_c * energy / M))
+
+    def _solve(self, run, w_guess, energy, unloading, extrapolate, M):
+        """:meth:`ForwardCache.solve` with this surface's messages."""
+        note = None
+        if self.kind == "statistical":
+            def note(need):
+                return (f". The surface has N = eta A_n = {self.n_summits:.6g} summits; its height distribution "
+                        f"(sigma = {self.sigma!r} m) is integrated until its tail is negligible (here up to "
+                        f"w* = {need:.4g}); a pdf with bounded support (GreenwoodWilliamson(pdf=..., "
+                        "support=...)) truncates it")
+        return self._tables.solve(run, w_guess, unloading, extrapolate,
+                                  lambda k: f"V1 = {self._speed(energy[k], M)!r} m/s (M = {M!r} kg)", note)
+
+    def _solve_explicit(self, e_hi, e_lo, unloading, extrapolate, M):
+        h = self._h
+        # the Hertz estimate starts every JG solve (independent of the table held, so results do
+        # not depend on what the surface computed before); JG summits sink deeper: table to 2x
+        x0, d0 = explicit.hertz_estimate(h, e_hi, e_lo)
+        return self._solve(
+            lambda data, w_model: explicit.solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model),
+            2.0 * float(x0.max()), e_hi, unloading, extrapolate, M)
+
+    def _solve_statistical(self, energy, unloading, extrapolate, M):
+        g = self._gwdata
+        statistical.check_resolved(g, energy, lambda k: f"V1 = {self._speed(energy[k], M)!r} m/s")
+        # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
+        # (a/R = 1) means the impact itself is past it
+        w_end = fw.forward_limit(self.eps_y, self.nu, extrapolate=True)
+        hz = statistical.hertz_estimate(g, energy, statistical.HERTZ_CAP * w_end)
+        if np.any(hz[0] == NEEDS_TABLE):
+            k = int(np.flatnonzero(hz[0] == NEEDS_TABLE)[0])
+            raise ValueError(f"the impact at V1 = {self._speed(energy[k], M)!r} m/s (M = {M!r} kg) drives "
+                             f"summits to a w* that {interference_limit_message(w_end * 1.5, self.eps_y, self.nu, True)}"
+                             f". The height distribution (sigma = {self.sigma!r} m) is integrated until its tail "
+                             "is negligible; a pdf with bounded support (GreenwoodWilliamson(pdf=..., "
+                             "support=...)) truncates it")
+        if np.any(hz[0] != OK):
+            raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
+        zs0 = hz[1].copy()
+        return self._solve(
+            lambda data, w_model: statistical.solve_impacts(data, g, energy, zs0, w_model),
+            1.5 * float(hz[2].max()), energy, unloading, extrapolate, M)
+
+    def _assemble(self, v, M, energy, raw):
+        """The result fields from a solver output (rows: status, w* needed, position, w* at the
+        top, sum P*, sum L, in contact, yielded; per summit for a statistical surface)."""
+        pos, w_top, p_sum, l_sum, n_c, n_y = raw[2:8]
+        if self.kind == "explicit":
+            d_min = (self.z_top - self.z_mean) - pos * self.omega_c
+            n_c, n_y = n_c.astype(np.int64), n_y.astype(np.int64)
+        else:
+            n_tot = self.gw.n_summits
+            d_min = pos * self.sigma
+            n_c, n_y = n_tot * n_c, n_tot * n_y
+            p_sum, l_sum = n_tot * p_sum, n_tot * l_sum
+        loss = l_sum / energy
+        e = np.sqrt(1.0 - loss)
+        result = {
+            "V1_star": np.sqrt(energy), "e": e, "loss": loss, "d_min": d_min,
+            "force_max": self.P_c * p_sum, "n_contact": n_c, "n_yielded": n_y,
+            "dissipated": self.U_c * l_sum, "energy_in": 0.5 * M * v**2, "w_star_max": w_top,
+        }
+        for k, a in result.items():
+            if np.any(np.isnan(a)):
+                raise RuntimeError(f"rough-surface impact produced NaN in {k} (please report)")
+        return result

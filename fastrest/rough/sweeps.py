@@ -1,0 +1,179 @@
+"""Impacts of many rough surfaces: here, or one Dask task per surface (:func:`sweep`)."""
+import numpy as np
+
+from .._validation import as_float_array, check_bool, check_finite_positive
+from ..materials import Material
+from ..unloading import unloading_code
+from .heights import gaussian_summits
+from .surface import RoughSurface
+
+__all__ = ["sweep", "surface_from_params"]
+
+
+def surface_from_params(material=None, R_a=None, heights=None, gw=None, gaussian=None,
+                        E=None, nu=None, Sy=None):
+    """Build a :class:`RoughSurface` from plain parameters: the default factory of :func:`sweep`.
+
+    Parameters
+    ----------
+    material : fastrest.Material, optional
+        The summits' material; or give ``E``, ``nu``, ``Sy``.
+    R_a : float
+        Summit radius (m), > 0.
+    heights : array_like, optional
+        Explicit summit heights (m).
+    gw : GreenwoodWilliamson or dict, optional
+        Statistical description.
+    gaussian : (int, float) or (int, float, int), optional
+        (n, sigma, seed): n heights of standard deviation sigma (m) drawn by
+        :func:`gaussian_summits` where the task runs (nothing large is shipped).
+    E, nu, Sy : float, optional
+        Young's modulus (Pa), Poisson's ratio (-), yield strength (Pa), without ``material``.
+
+    Returns
+    -------
+    RoughSurface
+
+    Raises
+    ------
+    ValueError
+        Neither ``material`` nor all of E, nu, Sy; both ``heights`` and ``gaussian``; or what
+        :class:`RoughSurface` refuses.
+
+    Notes
+    -----
+    One of ``heights``, ``gw``, ``gaussian`` describes the surface (docs/rough.md sections 3-4).
+
+    Examples
+    --------
+    >>> from fastrest import rough
+    >>> s = rough.surface_from_params(E=200e9, nu=0.3, Sy=1e9, R_a=1e-4, gaussian=(100, 50e-9, 1))
+    >>> s.kind, s.n_summits
+    ('explicit', 100)
+    """
+    if material is None:
+        if E is None or nu is None or Sy is None:
+            raise ValueError("give material= or all of E, nu, Sy")
+        material = Material(E=E, nu=nu, Sy=Sy)
+    if gaussian is not None:
+        if heights is not None:
+            raise ValueError("give only one of heights= and gaussian=")
+        heights = gaussian_summits(*gaussian)
+    return RoughSurface(material, R_a, heights=heights, gw=gw)
+
+
+def _sweep_task(factory, params, array_keys, *args):
+    """One parameter set (module-level, so Dask can ship it by reference)."""
+    k = len(array_keys)
+    params = dict(params)
+    params.update(zip(array_keys, args[:k]))
+    V1, M, unloading, extrapolate = args[k:]
+    surface = factory(**params)
+    return surface.impact(V1, M, unloading, extrapolate=extrapolate)
+
+
+def _rebuild_surface(material, R_a, heights=None, gw=None):
+    """Factory for RoughSurface objects sent to Dask (their :meth:`RoughSurface.params`)."""
+    return RoughSurface(material, R_a, heights=heights, gw=gw)
+
+
+def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surface_from_params,
+          client=None, scatter_min=100_000):
+    """Impacts of many surfaces (or parameter sets) at the speeds ``V1``.
+
+    Parameters
+    ----------
+    surfaces : sequence of RoughSurface or of dict
+        Each dict holds keyword arguments of ``factory`` (default :func:`surface_from_params`:
+        material or E/nu/Sy, R_a, and heights, gw or gaussian=(n, sigma, seed)).
+    V1 : float or array_like
+        Impact speeds (m/s), > 0; the same for every surface.
+    M : float or sequence of float
+        Mass of the flat (kg), > 0: one value, or one per surface.
+    unloading : {"jcg", "etsion", "brake"}
+        Unloading model, as in :meth:`RoughSurface.impact`.
+    extrapolate : bool
+        As in :meth:`RoughSurface.impact`.
+    factory : callable
+        Module-level function building a RoughSurface from a dict (must pickle for Dask).
+    client : dask.distributed.Client, optional
+        Run one task per surface on this cluster. Arrays with at least ``scatter_min`` elements
+        (explicit heights) and V1 are scattered once each (the same array object is shipped once
+        even if several parameter sets use it). Without a client everything runs here.
+    scatter_min : int
+        Smallest array (elements) scattered rather than sent with its task.
+
+    Returns
+    -------
+    list of RoughImpact
+        In the order of ``surfaces``; the same numbers with or without a client (the kernels sum
+        in fixed blocks, so thread counts do not change the result).
+
+    Raises
+    ------
+    ValueError
+        A mass out of range, a number of masses that does not match the surfaces, an unknown
+        unloading model, or what a surface's impact refuses.
+    TypeError
+        A surface that is neither a RoughSurface nor a dict, a factory that is not callable, or a
+        non-numeric V1 or M.
+
+    Notes
+    -----
+    Each impact is :meth:`RoughSurface.impact` (docs/rough.md section 8, "Sweeps").
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import rough
+    >>> steel = fastrest.Material(E=200e9, nu=0.3, Sy=1e9)
+    >>> specs = [dict(material=steel, R_a=1e-4, gw=dict(eta=1e10, sigma=s, A_n=1e-4)) for s in (20e-9, 50e-9)]
+    >>> [r.kind for r in rough.sweep(specs, [0.01, 0.1], 0.01)]
+    ['statistical', 'statistical']
+    """
+    surfaces = list(surfaces)
+    Ma = as_float_array(M, "M")
+    if Ma.ndim == 0:
+        masses = [float(Ma)] * len(surfaces)
+    else:
+        masses = [float(m) for m in Ma.ravel()]
+        if Ma.ndim != 1 or len(masses) != len(surfaces):
+            raise ValueError(f"M has {len(masses)} values for {len(surfaces)} surfaces")
+    for m in masses:
+        check_finite_positive(m, "M", "(kg, mass of the flat)")
+    v = as_float_array(V1, "V1")
+    unloading_code(unloading)
+    check_bool(extrapolate, "extrapolate")
+    if not callable(factory):
+        raise TypeError("factory must be a callable building a RoughSurface from a dict")
+    specs = []
+    for s in surfaces:
+        if isinstance(s, RoughSurface):
+            specs.append(s.params())
+        elif isinstance(s, dict):
+            specs.append(dict(s))
+        else:
+            raise TypeError("surfaces must be RoughSurface objects or dicts of parameters")
+    if client is None:
+        out = []
+        for s, spec, m in zip(surfaces, specs, masses):
+            surface = s if isinstance(s, RoughSurface) else factory(**spec)
+            out.append(surface.impact(v, m, unloading, extrapolate=extrapolate))
+        return out
+    v_future = client.scatter(v)
+    shipped = {}  # id(array) -> future: each big array is scattered once
+    futures = []
+    for s, spec, m in zip(surfaces, specs, masses):
+        small, keys, arrays = {}, [], []
+        for key, val in spec.items():
+            if isinstance(val, np.ndarray) and val.size >= scatter_min:
+                if id(val) not in shipped:
+                    shipped[id(val)] = (client.scatter(val), val)  # keep val alive for the id
+                keys.append(key)
+                arrays.append(shipped[id(val)][0])
+            else:
+                small[key] = val
+        fac = factory if not isinstance(s, RoughSurface) else _rebuild_surface
+        futures.append(client.submit(_sweep_task, fac, small, keys, *arrays, v_future, m, unloading,
+                                     extrapolate, pure=False))
+    return client.gather(futures)
