@@ -19,7 +19,7 @@ from .energy import W_star, loading_energy
 from . import direct
 from .curve import Curve, curve, Scene, scene
 from .tables import Table, load_table, omega_m_star, e_star, loss_star
-from ._hdf5 import TableFileError
+from .tables import TableFileError
 from .force_law import ContactLaw, contact_law
 
 __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",

@@ -52,12 +52,12 @@ def reseal(path):
 def recompute_checksum(path):
     """Set the ``checksum`` attribute to the SHA-256 of the arrays as they now are, then reseal."""
     sys.path.insert(0, str(REPO))
-    from fastrest import _hdf5
+    from fastrest.tables.hdf5 import checksum_arrays
 
     with h5py.File(path, "r+") as f:
         arrays = {name: f[name][()] for name in f if isinstance(f.get(name, getlink=True), h5py.HardLink)
                   and isinstance(f[name], h5py.Dataset)}
-        f.attrs["checksum"] = _hdf5._checksum(arrays)
+        f.attrs["checksum"] = checksum_arrays(arrays)
     reseal(path)
 
 

@@ -17,6 +17,7 @@ import pytest
 
 import damaged_corpus
 from fastrest import TableFileError, tables
+from fastrest.tables import store
 
 REPO = Path(__file__).resolve().parents[1]
 TINY_GRID = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
@@ -176,7 +177,7 @@ def test_damaged_cached_table_is_rebuilt_with_a_warning(tmp_path, monkeypatch, t
     cache = tmp_path / "cache"
     cache.mkdir()
     monkeypatch.setenv("FASTREST_CACHE_DIR", str(cache))
-    monkeypatch.setattr(tables, "_LOADED", {})
+    monkeypatch.setattr(store, "LOADED", {})
     path = cache / f"{tables.grid_key(TINY_GRID)}.h5"
     data = tiny.read_bytes()
     for damage in (data[:len(data) // 2], data[:1000] + bytes(4096) + data[5096:], b""):
@@ -185,7 +186,7 @@ def test_damaged_cached_table_is_rebuilt_with_a_warning(tmp_path, monkeypatch, t
             t = tables.cached_table(TINY_GRID, progress=False)
         assert str(path) in str(rec[0].message)
         assert tables.read(path).grid == t.grid == tables.normalise_grid(TINY_GRID)
-        tables._LOADED.clear()
+        store.LOADED.clear()
     # a FIFO in the cache's place is replaced, without blocking
     path.unlink()
     os.mkfifo(path)

@@ -30,7 +30,8 @@ USERBLOCK = 512
 MAX_FILE_BYTES = 1 << 30
 _MAGIC = b"fastrest-table-file 1\n"
 _HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
-_CHUNK = 1 << 20
+#: Bytes per read and write call (tests make it small to provoke short writes).
+CHUNK_BYTES = 1 << 20
 
 
 class TableFileError(ValueError):
@@ -101,7 +102,7 @@ def read_verified(path):
         _check_regular(st, path)
         parts, left = [], st.st_size
         while left > 0:
-            part = os.read(fd, min(left, _CHUNK))
+            part = os.read(fd, min(left, CHUNK_BYTES))
             if not part:
                 break
             parts.append(part)
@@ -200,7 +201,7 @@ def write_atomic(path, image, mode):
         try:
             pos = 0
             while pos < len(view):
-                pos += os.write(fd, view[pos:pos + _CHUNK])
+                pos += os.write(fd, view[pos:pos + CHUNK_BYTES])
             # Make the data durable before the rename makes it visible.
             os.fsync(fd)
         finally:

@@ -1,0 +1,268 @@
+"""The compiled table evaluator: :class:`TableData` and the kernels that interpolate it.
+
+Evaluation at (V1*, eps_y, nu): the degree-5 polynomial of V1*'s cell at each of the 6 x 6 nearest
+material nodes, combined with 6-point Lagrange weights in the mapped C(nu) eps_y and in nu. Below
+1.9^1.25 the answer does not depend on the material: the closed forms (Hertz loading), evaluated by
+the same few-ulp cells as :mod:`fastrest.curve`; V1* <= 1 is exact (elastic). A query whose
+interpolated w_m* exceeds 425 (by more than :data:`OMEGA_LIMIT_TOL`) gives NaN.
+
+Names: ``*_kernel`` evaluate one point (NaN outside the table), ``*_array`` loop over flat arrays
+into ``out``. :func:`table_array` and :func:`interpolant_array` are documented internals for tests
+and bench; users call :class:`~fastrest.tables.Table` methods or :mod:`fastrest.jit`.
+"""
+import math
+from collections import namedtuple
+
+import numba as nb
+import numpy as np
+
+from .._jit import jit
+from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
+from ..contact import omega_star_limit_kernel
+from ..critical import c_of_nu
+from ..energy import V_SWITCH
+from ..interpolation import MANTISSA_BITS, cell_index, cell_polynomial, fma, two_level_index, values_to_coeffs
+from ._shared import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
+from .grid import STENCIL_EPS, STENCIL_NU, xi_range
+
+__all__ = ["TableData", "OMEGA_LIMIT_TOL", "OMEGA_LIMIT", "EPS_Y_AR_BINDS", "table_data", "table_value_kernel",
+           "table_value", "table_array", "table_array_parallel", "interpolant_array"]
+
+#: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
+OMEGA_LIMIT_TOL = 1e-9
+#: Largest interpolated w_m* a table answers for.
+OMEGA_LIMIT = OMEGA_M_STAR_MAX * (1.0 + OMEGA_LIMIT_TOL)
+#: Below this eps_y the JG law's end (a/R = 1, eq 12) lies past w* = 425 for every 0 <= nu <= 0.5
+#: (it reaches 425 at eps_y = 0.010223 for nu = 0.5, 0.0141 for nu = 0; tested), so only wider
+#: tables pay for the per-point a/R limit.
+EPS_Y_AR_BINDS = 0.0102
+
+TableData = namedtuple("TableData", ["map_rate", "xi0", "nu0", "inv_h_nu", "n_nu",
+                                     "eps_lo", "eps_hi", "nu_lo", "nu_hi", "v_split", "shift_fine",
+                                     "base_fine", "shift", "base", "v_top", "v_safe", "cells",
+                                     "cell_block", "block_inv_h", "block_n", "block_cell0",
+                                     "block_offset", "block_qstride", "coef", "hertz", "n_quantities"])
+TableData.__doc__ = """Numba-friendly data of a :class:`~fastrest.tables.Table` (see :mod:`fastrest.jit`).
+
+Built only by :func:`table_data` (by keyword). eps_y enters through C(nu) eps_y and
+xi = expm1(map_rate C(nu) eps_y)/map_rate (xi = C(nu) eps_y for map_rate = 0), uniform from xi0
+with spacing 1/block_inv_h[b] over block_n[b] nodes in block b of cells; nu uniform from nu0,
+spacing 1/inv_h_nu, n_nu nodes. eps_lo..eps_hi, nu_lo..nu_hi: the table's materials.
+cells: (ncell, 2) [center, 1/half_width] of each V1* cell (row of V1*:
+:func:`fastrest.interpolation.two_level_index` with v_split, shift_fine, base_fine, shift, base);
+cell_block: the block of each cell; coef: 1-D, for each block b from block_offset[b] a C-order
+(n_quantities, cells of b, block_n[b], n_nu, 6) array (block_qstride[b] per quantity) of the
+polynomial coefficients of :data:`~fastrest.tables.QUANTITIES` (omega_m_star, then e and 1 - e^2 of
+each unloading model the table holds, by code); v_top: the largest V1* held; v_safe: below this V1*
+every material of the table has w_m* <= 425; hertz: (5 * N_HERTZ, 8) rows of the
+material-independent Hertz-range closed forms (see :mod:`fastrest.curve`); n_quantities: 1 + 2 x
+the number of unloading models held.
+"""
+
+
+def _hertz_table_rows(n_models):
+    """Hertz-range rows for the table's quantities (q * N_HERTZ + cell): w_m*, then e and 1 - e^2
+    of the first ``n_models`` unloading models."""
+    rows = [hertz_rows(code) for code in range(n_models)]
+    return np.ascontiguousarray(np.concatenate([rows[0][0]] + [r[k] for r in rows for k in (1, 2)]))
+
+
+def table_data(gen):
+    """The :class:`TableData` of a :class:`~fastrest.tables.generation.GeneratedTable` (the one place
+    it is built, by keyword)."""
+    g = gen.grid
+    eps, nus, edges = gen.eps_y, gen.nu, gen.edges
+    center = 0.5 * (edges[:, 0] + edges[:, 1])
+    half = 0.5 * (edges[:, 1] - edges[:, 0])
+    xi0, xi1 = xi_range(g)
+    blocks = gen.blocks
+    nq = blocks[0].values.shape[0]
+    # per block (nq, n_eps, n_nu, ncell, 6) -> (nq, ncell, n_eps, n_nu, 6), flattened one after another
+    parts = [np.ascontiguousarray(values_to_coeffs(b.values).transpose(0, 3, 1, 2, 4)).ravel() for b in blocks]
+    cell_block = np.empty(edges.shape[0], dtype=np.int64)
+    for k, b in enumerate(blocks):
+        cell_block[b.cell0:b.cell1] = k
+
+    def i64(x):
+        return np.array(x, dtype=np.int64)
+
+    return TableData(
+        map_rate=g["c_eps_y_map_rate"], xi0=float(xi0),
+        nu0=float(nus[0]), inv_h_nu=float((nus.size - 1) / (nus[-1] - nus[0])), n_nu=int(nus.size),
+        eps_lo=float(eps[0]), eps_hi=float(eps[-1]), nu_lo=float(nus[0]), nu_hi=float(nus[-1]),
+        v_split=g["fine_v1_star_max"], shift_fine=MANTISSA_BITS - g["fine_bits_per_octave"],
+        base_fine=int(gen.base_fine), shift=MANTISSA_BITS - g["bits_per_octave"], base=int(gen.base),
+        v_top=float(gen.v_top), v_safe=float(np.min(gen.v1_star_max)),
+        cells=np.ascontiguousarray(np.stack([center, 1.0 / half], 1)), cell_block=cell_block,
+        block_inv_h=np.array([(b.n - 1) / (xi1 - xi0) for b in blocks]), block_n=i64([b.n for b in blocks]),
+        block_cell0=i64([b.cell0 for b in blocks]), block_offset=i64(np.cumsum([0] + [p.size for p in parts[:-1]])),
+        block_qstride=i64([p.size // nq for p in parts]), coef=np.concatenate(parts),
+        hertz=_hertz_table_rows((nq - 1) // 2), n_quantities=nq)
+
+
+@jit(inline=True)
+def _first_node(s, m, n):
+    i = int(math.floor(s)) - (m // 2 - 1)
+    if i < 0:
+        return 0
+    if i > n - m:
+        return n - m
+    return i
+
+
+@jit(inline=True)
+def _lagrange6(x, x0, inv_h, n):
+    """First index and weights of the 6-node Lagrange stencil at x on a uniform grid."""
+    s = (x - x0) * inv_h
+    i = _first_node(s, 6, n)
+    t = s - i
+    t1, t2, t3, t4, t5 = t - 1.0, t - 2.0, t - 3.0, t - 4.0, t - 5.0
+    # a flat (index, w0..w5) tuple: a nested weights tuple trips Numba's parfor array analysis
+    # when this is inlined into a parallel loop (AssertionError "Dimension mismatch")
+    return (i, -t1 * t2 * t3 * t4 * t5 / 120.0, t * t2 * t3 * t4 * t5 / 24.0,
+            -t * t1 * t3 * t4 * t5 / 12.0, t * t1 * t2 * t4 * t5 / 12.0,
+            -t * t1 * t2 * t3 * t5 / 24.0, t * t1 * t2 * t3 * t4 / 120.0)
+
+
+@jit(inline=True)
+def table_value_kernel(tab, q, v, eps_y, nu):
+    """Quantity q of :data:`~fastrest.tables.QUANTITIES` (0 w_m*, 1 + 2 code e, 2 + 2 code 1 - e^2)
+    at (V1*, eps_y, nu) of the table ``tab`` (:class:`TableData`).
+
+    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past a/R = 1 for
+    eps_y > 0.0102) or for invalid input (including a q the table does not hold).
+    """
+    if not (q >= 0 and q < tab.n_quantities):
+        return np.nan
+    # float32 and integer inputs, as the Python API takes them
+    return _interpolate(tab, q, np.float64(v), np.float64(eps_y), np.float64(nu), True)
+
+
+#: Former name of :func:`table_value_kernel` (same object).
+table_value = table_value_kernel
+
+
+@jit(inline=True)
+def _interpolate(tab, q, v, eps_y, nu, check_limit):
+    # every field is read here, unconditionally: a namedtuple field read inside a rarely taken
+    # branch (the blend of a block's first cell) made the whole loop ~7x slower (Numba; measured)
+    eps_lo, eps_hi, nu_lo, nu_hi, v_top, v_safe = tab.eps_lo, tab.eps_hi, tab.nu_lo, tab.nu_hi, tab.v_top, tab.v_safe
+    hertz, cells, cell_block, block_cell0 = tab.hertz, tab.cells, tab.cell_block, tab.block_cell0
+    g = (tab.coef, tab.block_offset, block_cell0, tab.block_inv_h, tab.block_n, tab.block_qstride,
+         tab.xi0, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    map_rate = tab.map_rate
+    split = (tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
+    # a material a few ulp outside an edge (0.001 + 0.0005 * 18 = 0.010000000000000002) is at
+    # the edge: clamped there, never extrapolated further
+    e_lo, e_hi, n_lo, n_hi = eps_lo, eps_hi, nu_lo, nu_hi
+    if not (eps_y >= e_lo * (1.0 - EDGE_TOL) and eps_y <= e_hi * (1.0 + EDGE_TOL)
+            and nu >= n_lo * (1.0 - EDGE_TOL) and nu <= n_hi * (1.0 + EDGE_TOL)):
+        return np.nan
+    eps_y = min(max(eps_y, e_lo), e_hi)
+    nu = min(max(nu, n_lo), n_hi)
+    if not v > V_SWITCH:
+        if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
+            r = cell_polynomial(hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
+            return r * (v - 1.0) if q > 0 and q % 2 == 0 else r  # the losses
+        if v >= 0.0:  # elastic, exact
+            if q == 0:
+                return v**0.8
+            return 1.0 if q % 2 == 1 else 0.0
+        return np.nan
+    if not v <= v_top:
+        return np.nan
+    cell = two_level_index(v, split[0], split[1], split[2], split[3], split[4])
+    u = (v - cells[cell, 0]) * cells[cell, 1]
+    c_eps_y = c_of_nu(nu) * eps_y
+    xi = math.expm1(map_rate * c_eps_y) / map_rate if map_rate > 0.0 else c_eps_y
+    b = cell_block[cell]
+    blend = cell == block_cell0[b] and b > 0
+    w_lim = OMEGA_LIMIT
+    check = check_limit and v > v_safe
+    if check and eps_y > EPS_Y_AR_BINDS:  # the law may end (a/R = 1) before w* = 425
+        w_lim = min(w_lim, omega_star_limit_kernel(eps_y, nu) * (1.0 + OMEGA_LIMIT_TOL))
+    if not (blend or (check and q != 0)):  # the common case, straight-line
+        r = _block_value(g, q, b, cell, u, xi, nu)
+        if check and not r <= w_lim:
+            return np.nan
+        return r
+    # otherwise one more call site of the (inlined) stencil sum, in loops: passes over (w_m* for
+    # the limit check, then q) and over (this block, the previous one for a blended cell)
+    r = np.nan
+    for p in range(2 if check and q != 0 else 1):
+        qq = 0 if p == 0 and check and q != 0 else q
+        val = 0.0
+        for k in range(2 if blend else 1):
+            x = _block_value(g, qq, b - k, cell, u, xi, nu)
+            if k == 0:
+                val = x
+            else:  # smoothstep from the previous block's grid (left edge) to this block's (right)
+                t = min(max(0.5 * (u + 1.0), 0.0), 1.0)
+                val = x + t * t * (3.0 - 2.0 * t) * (val - x)
+        if check and qq == 0 and not val <= w_lim:
+            return np.nan
+        r = val
+    return r
+
+
+@jit(inline=True)
+def _block_value(g, q, b, cell, u, xi, nu):
+    """Quantity q in ``cell`` interpolated across materials on block b's grid; ``g`` is the
+    table's (coef, block_offset, block_cell0, block_inv_h, block_n, block_qstride, xi0, nu0,
+    inv_h_nu, n_nu). The first cell of a block b > 0 is blended by :func:`_interpolate` from the
+    previous block's grid at its left edge (where the previous cell ends on that grid) to its own
+    at its right edge, so the table is continuous across block boundaries to a few ulp although
+    the two grids interpolate materials differently (by up to the table's error, ~1e-10)."""
+    coef, offset, cell0, inv_h, block_n, qstride, xi0, nu0, inv_h_nu, n_nu = g
+    n = block_n[b]
+    i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, xi0, inv_h[b], n)
+    j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, nu0, inv_h_nu, n_nu)
+    row = 6 * n_nu  # one eps_y node's coefficients
+    first = offset[b] + ((cell - cell0[b]) * n + i) * row + 6 * j
+    return _stencil_sum(coef, first + q * qstride[b], row, u, (e0, e1, e2, e3, e4, e5), (n0, n1, n2, n3, n4, n5))
+
+
+@jit(inline=True)
+def _stencil_sum(coef, first, row, u, we, wn):
+    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one polynomial (Estrin).
+
+    ``first``: index in the flat ``coef`` of the stencil's first node; ``row``: stride of one eps_y
+    node. The sums stay plain multiply-adds (fused ones lengthen their dependency chains: measured
+    ~10 % slower); the final polynomial uses fma.
+    """
+    c0 = c1 = c2 = c3 = c4 = c5 = 0.0
+    for a in range(STENCIL_EPS):
+        for b in range(STENCIL_NU):
+            w = we[a] * wn[b]
+            k = np.uint64(first + a * row + 6 * b)
+            c0 += w * coef[k]
+            c1 += w * coef[k + np.uint64(1)]
+            c2 += w * coef[k + np.uint64(2)]
+            c3 += w * coef[k + np.uint64(3)]
+            c4 += w * coef[k + np.uint64(4)]
+            c5 += w * coef[k + np.uint64(5)]
+    u2 = u * u
+    return fma(u2 * u2, fma(u, c5, c4), fma(u2, fma(u, c3, c2), fma(u, c1, c0)))
+
+
+@jit
+def interpolant_array(tab, q, v, eps_y, nu, out):
+    """out[k]: quantity q at (v[k], eps_y[k], nu[k]) without the w_m* <= 425 check (for measuring
+    the interpolant's error at the limit; documented internal)."""
+    for k in range(v.size):
+        out[k] = _interpolate(tab, q, v[k], eps_y[k], nu[k], False)
+
+
+@jit
+def table_array(tab, q, v, eps_y, nu, out):
+    """out[k] = :func:`table_value_kernel` (tab, q, v[k], eps_y[k], nu[k]) over flat float64 arrays
+    (documented internal: the Table methods validate and call this)."""
+    for k in range(v.size):
+        out[k] = table_value_kernel(tab, q, v[k], eps_y[k], nu[k])
+
+
+@jit(parallel=True)
+def table_array_parallel(tab, q, v, eps_y, nu, out):
+    """:func:`table_array` on all cores (:func:`fastrest._threads.run_parallel` picks it)."""
+    for k in nb.prange(v.size):
+        out[k] = table_value_kernel(tab, q, v[k], eps_y[k], nu[k])
