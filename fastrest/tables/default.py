@@ -69,12 +69,12 @@ def loss_star(v1_star, eps_y, nu, unloading="jcg"):
 omega_m_star.__doc__ = _TOP_DOC.format(
     what="Normalised maximum interference w_m* = omega_m/omega_c (JGM eq 29)", extra="", returns="w_m* (-)",
     notes="w_m* solves the energy balance F(w_m*) = V1*^2, JGM eq (29) (eq 31 in closed form below 1.9^1.25).",
-    example="round(fastrest.omega_m_star(5.0, 0.005, 0.33), 6)\n    3.664134")
+    example="round(fastrest.omega_m_star(5.0, 0.005, 0.33), 6)\n    3.673079")
 e_star.__doc__ = _TOP_DOC.format(
     what="Coefficient of restitution e = V2/V1 (JGM eqs 16, 38)", extra=_UNLOADING_DOC, returns="e (-)",
     notes="e = V2/V1 from w_m* and the unloading model's residual interference, JGM eq (38).",
-    example="round(fastrest.e_star(5.0, 0.005, 0.33), 6)\n    0.875295")
+    example="round(fastrest.e_star(5.0, 0.005, 0.33), 6)\n    0.898078")
 loss_star.__doc__ = _TOP_DOC.format(
     what="Dissipated fraction of the impact energy 1 - e^2", extra=_UNLOADING_DOC, returns="1 - e^2 (-)",
     notes="1 - e^2 (JGM eq 38), tabulated as such: accurate where e is close to 1.",
-    example="round(fastrest.loss_star(5.0, 0.005, 0.33), 6)\n    0.233859")
+    example="round(fastrest.loss_star(5.0, 0.005, 0.33), 6)\n    0.193456")

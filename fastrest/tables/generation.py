@@ -156,7 +156,7 @@ def generate(grid=None, progress=None):
     >>> g = generate(dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35,
     ...                   n_nu=6, bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6), progress=False)
     >>> round(Table(g).e_star(5.0, 0.005, 0.33), 4)
-    0.8753
+    0.8981
     """
     g = normalise_grid(grid)
     nus = nu_axis(g)

@@ -228,9 +228,9 @@ def c_eps_y(eps_y, nu):
 
     Examples
     --------
-    >>> from fastrest.tables import c_eps_y
+    >>> from fastrest.tables.grid import c_eps_y
     >>> round(float(c_eps_y(0.005, 0.3)), 6)
-    0.008056
+    0.008075
     """
     return poisson_factor(nu) * eps_y
 
@@ -267,8 +267,8 @@ def v1_star_top(g):
     """The largest V1* a table of grid ``g`` holds: the largest w_m* = 425 speed over the materials
     of its top block's nodes (clamped into the grid's eps_y range)."""
     nus = nu_axis(g)
-    s = c_eps_y_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
-    eps = s[:, None] / c_eps_y(1.0, nus)[None, :]
+    top = c_eps_y_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
+    eps = top[:, None] / c_eps_y(1.0, nus)[None, :]
     return max(v1_star_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
                for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
 
@@ -334,8 +334,8 @@ def eps_y_blocks(g, edges):
     for v_end, n in g["eps_y_blocks"] + [[math.inf, g["n_eps_y"]]]:
         c1 = int(np.searchsorted(edges[:, 1], v_end, side="right"))
         if c1 > c0:
-            s = c_eps_y_of_xi(np.linspace(*xi_range(g), n), g["c_eps_y_map_rate"])
-            out.append((c0, c1, n, s))
+            axis = c_eps_y_of_xi(np.linspace(*xi_range(g), n), g["c_eps_y_map_rate"])
+            out.append((c0, c1, n, axis))
             c0 = c1
-    return [Block(cell0=c0, cell1=c1, cstop=c1 + (k < len(out) - 1), n=n, c_eps_y=s)
-            for k, (c0, c1, n, s) in enumerate(out)]
+    return [Block(cell0=c0, cell1=c1, cstop=c1 + (k < len(out) - 1), n=n, c_eps_y=axis)
+            for k, (c0, c1, n, axis) in enumerate(out)]

@@ -101,8 +101,9 @@ def table_data(gen):
 
 
 @jit(inline=True)
-def _first_node(s, m, n):
-    i = int(math.floor(s)) - (m // 2 - 1)
+def _first_node(pos, m, n):
+    """First node of the m-point stencil centred at ``pos`` (in node spacings), moved inside [0, n)."""
+    i = int(math.floor(pos)) - (m // 2 - 1)
     if i < 0:
         return 0
     if i > n - m:
@@ -113,9 +114,9 @@ def _first_node(s, m, n):
 @jit(inline=True)
 def _lagrange6(x, x0, inv_h, n):
     """First index and weights of the 6-node Lagrange stencil at x on a uniform grid."""
-    s = (x - x0) * inv_h
-    i = _first_node(s, 6, n)
-    t = s - i
+    pos = (x - x0) * inv_h
+    i = _first_node(pos, 6, n)
+    t = pos - i
     t1, t2, t3, t4, t5 = t - 1.0, t - 2.0, t - 3.0, t - 4.0, t - 5.0
     # a flat (index, w0..w5) tuple: a nested weights tuple trips Numba's parfor array analysis
     # when this is inlined into a parallel loop (AssertionError "Dimension mismatch")

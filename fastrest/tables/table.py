@@ -99,7 +99,7 @@ class Table:
     >>> import fastrest
     >>> t = fastrest.load_table()
     >>> round(t.e_star(5.0, 0.005, 0.33), 6)
-    0.875295
+    0.898078
     """
 
     def __init__(self, gen, attrs=None, path=None):
@@ -196,15 +196,15 @@ class Table:
 
     omega_m_star.__doc__ = "Maximum interference w_m* = omega_m/omega_c (-), JGM eq (29).\n" + _QUANTITY_PARAMS.format(
         extra="", returns="w_m* (-)", raises="", notes="w_m* solves F(w_m*) = V1*^2 (JGM eq 29).",
-        example="round(t.omega_m_star(5.0, 0.005, 0.33), 6)\n        3.664134")
+        example="round(t.omega_m_star(5.0, 0.005, 0.33), 6)\n        3.673079")
     e_star.__doc__ = "Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38).\n" + _QUANTITY_PARAMS.format(
         extra=_UNLOADING, returns="e (-)", raises="; an unknown unloading model, or one the table does not hold",
         notes="e from w_m* and the unloading model's residual interference (JGM eq 38).",
-        example='round(t.e_star(5.0, 0.005, 0.33, "etsion"), 6)\n        0.874683')
+        example='round(t.e_star(5.0, 0.005, 0.33, "etsion"), 6)\n        0.925853')
     loss_star.__doc__ = "Dissipated fraction of the impact energy 1 - e^2 (-).\n" + _QUANTITY_PARAMS.format(
         extra=_UNLOADING, returns="1 - e^2 (-)", raises="; an unknown unloading model, or one the table does not hold",
         notes="1 - e^2 tabulated as such (accurate where e is close to 1).",
-        example="round(t.loss_star(5.0, 0.005, 0.33), 6)\n        0.233859")
+        example="round(t.loss_star(5.0, 0.005, 0.33), 6)\n        0.193456")
 
     def loading_energy(self, w, eps_y, nu):
         """Loading energy F(w*) = 1 - (W_ep)*(w*) to interference w* over U_c (-), from the table.
@@ -243,7 +243,7 @@ class Table:
 
         Notes
         -----
-        w* <= 1.9: the closed form w*^2.5 (Hertz, JGM eq 19), exact. Above: 8-point Lagrange
+        w* <= 1.9: the closed form w*^2.5 (Hertz, JGM eq 19), exact. Above: 10-point Lagrange
         interpolation of ln F in ln w* and across the stored eps_y and nu nodes
         (:mod:`fastrest.tables.w_star`). Against the quadrature, over the shipped table's domain
         (edges included), the relative error is about 1e-10 (tests/test_tables.py measures it).

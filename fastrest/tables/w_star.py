@@ -4,7 +4,7 @@ A table file stores (W_ep)* = 1 - F(w*) (JGM eq 25) on a plain grid: eps_y (``n_
 uniform nodes), nu (the table's nodes) and w* (20 uniform nodes on [0, 1.9], 236 geometric on
 (1.9, 425]). F is V1*^2 of the impact whose maximum interference is w* (eq 29). Up to w* = 1.9
 F = w*^2.5 exactly (Hertz, eq 19), for every material; above, this module interpolates ln F with
-8-point Lagrange stencils (:data:`STENCIL_W`) in ln w* (where the integrand of F is an entire
+10-point Lagrange stencils (:data:`STENCIL_W`) in ln w* (where the integrand of F is an entire
 function, so ln F is very smooth), in eps_y and in nu. :meth:`fastrest.tables.Table.W_star` and
 :meth:`~fastrest.tables.Table.loading_energy` call it.
 """
@@ -17,30 +17,34 @@ from .._jit import jit
 from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
 from ..contact import W_SWITCH, omega_star_limit_kernel
 from .grid import OMEGA_GRID_HERTZ
-from .kernel import EPS_Y_AR_BINDS
+from .kernel import EPS_Y_AR_BINDS, _first_node
 
 __all__ = ["EnergyData", "W_STAR_OMEGA_MAX", "STENCIL_W", "energy_data", "loading_energy_kernel", "loading_energy_array"]
 
 #: The stored W* ends at w* = 425.
 W_STAR_OMEGA_MAX = OMEGA_M_STAR_MAX
-#: Lagrange points per axis. The stored eps_y and nu axes are plain (not the mapped C(nu) eps_y of
-#: the restitution blocks) and coarse (32 x 8 nodes): 8-point stencils reach ~1e-10 relative on the
-#: shipped table where 6-point ones leave ~7e-9 at w* > 100 (measured against the quadrature; 10
-#: points gain nothing more).
-STENCIL_W = 8
+#: Lagrange points per axis (at most; fewer on an axis with fewer nodes). The stored eps_y and nu
+#: axes are plain (not the mapped C(nu) eps_y of the restitution blocks) and coarse (32 x 8 nodes):
+#: on the shipped table 10-point stencils reach 8e-11 relative where 6 and 8 points leave 2e-8 and
+#: 4e-10 near w* = 425 (bench/w_star_reader.py; 12 points gain nothing more).
+STENCIL_W = 10
 
 EnergyData = namedtuple("EnergyData", ["eps_lo", "eps_hi", "inv_h_eps", "n_eps", "nu_lo", "nu_hi", "inv_h_nu",
-                                       "n_nu", "ln_w0", "inv_h_ln_w", "n_w", "ln_f"])
+                                       "n_nu", "ln_w0", "inv_h_ln_w", "n_w", "ln_f", "stencil"])
 EnergyData.__doc__ = """Numba-friendly stored W* of a :class:`~fastrest.tables.Table` (``table.energy``).
 
 Built by :func:`energy_data` only. eps_y nodes uniform from eps_lo to eps_hi (spacing 1/inv_h_eps,
 n_eps nodes), nu from nu_lo to nu_hi (1/inv_h_nu, n_nu), ln w* from ln_w0 = ln 1.9 (1/inv_h_ln_w,
-n_w nodes up to ln 425); ln_f: (n_eps, n_nu, n_w) ln F = ln(1 - W*) at those nodes (NaN past a/R = 1).
+n_w nodes up to ln 425); ln_f: (n_eps, n_nu, n_w) ln F = ln(1 - W*) at those nodes (NaN past a/R = 1);
+stencil: Lagrange points per axis (at most).
 """
 
 
-def energy_data(gen):
-    """The :class:`EnergyData` of a :class:`~fastrest.tables.generation.GeneratedTable` (by keyword)."""
+def energy_data(gen, stencil=STENCIL_W):
+    """The :class:`EnergyData` of a :class:`~fastrest.tables.generation.GeneratedTable` (by keyword);
+    ``stencil``: Lagrange points per axis (2 to 12; bench/w_star_reader.py compares them)."""
+    if not 2 <= stencil <= 12:
+        raise ValueError(f"stencil must be in [2, 12]; got {stencil!r}")
     eps, nus, omega = gen.eps_y, gen.nu, gen.omega_star
     jg = omega[OMEGA_GRID_HERTZ - 1:]  # 1.9 and the geometric nodes above it
     with np.errstate(invalid="ignore"):
@@ -50,17 +54,16 @@ def energy_data(gen):
         n_eps=int(eps.size), nu_lo=float(nus[0]), nu_hi=float(nus[-1]),
         inv_h_nu=float((nus.size - 1) / (nus[-1] - nus[0])), n_nu=int(nus.size), ln_w0=math.log(jg[0]),
         inv_h_ln_w=float((jg.size - 1) / (math.log(jg[-1]) - math.log(jg[0]))), n_w=int(jg.size),
-        ln_f=np.ascontiguousarray(ln_f))
+        ln_f=np.ascontiguousarray(ln_f), stencil=int(stencil))
 
 
 @jit(inline=True)
-def _weights(s, n, w):
-    """First node and Lagrange weights w[:m] (m = min(STENCIL_W, n)) at position s on a uniform grid of n
+def _weights(pos, n, stencil, w):
+    """First node and Lagrange weights w[:m] (m = min(stencil, n)) at position ``pos`` on a uniform grid of n
     nodes (unit spacing), the stencil centred and moved inside at the ends; returns (first, m)."""
-    m = min(STENCIL_W, n)
-    i = int(math.floor(s)) - (m // 2 - 1)
-    i = min(max(i, 0), n - m)
-    t = s - i
+    m = min(stencil, n)
+    i = _first_node(pos, m, n)
+    t = pos - i
     for a in range(m):
         p = 1.0
         for b in range(m):
@@ -78,7 +81,7 @@ def loading_energy_kernel(tab, w, eps_y, nu):
     [0, 425] or NaN) and where a stencil node or the point itself lies past a/R = 1.
     """
     eps_lo, eps_hi, nu_lo, nu_hi = tab.eps_lo, tab.eps_hi, tab.nu_lo, tab.nu_hi
-    ln_f = tab.ln_f
+    ln_f, stencil = tab.ln_f, tab.stencil
     if not (eps_y >= eps_lo * (1.0 - EDGE_TOL) and eps_y <= eps_hi * (1.0 + EDGE_TOL)
             and nu >= nu_lo * (1.0 - EDGE_TOL) and nu <= nu_hi * (1.0 + EDGE_TOL)):
         return np.nan
@@ -90,12 +93,12 @@ def loading_energy_kernel(tab, w, eps_y, nu):
     nu = min(max(nu, nu_lo), nu_hi)
     if eps_y > EPS_Y_AR_BINDS and not w < omega_star_limit_kernel(eps_y, nu):
         return np.nan
-    we = np.empty(STENCIL_W)
-    wn = np.empty(STENCIL_W)
-    ww = np.empty(STENCIL_W)
-    i, me = _weights((eps_y - eps_lo) * tab.inv_h_eps, tab.n_eps, we)
-    j, mn = _weights((nu - nu_lo) * tab.inv_h_nu, tab.n_nu, wn)
-    k, mw = _weights((math.log(w) - tab.ln_w0) * tab.inv_h_ln_w, tab.n_w, ww)
+    we = np.empty(stencil)
+    wn = np.empty(stencil)
+    ww = np.empty(stencil)
+    i, me = _weights((eps_y - eps_lo) * tab.inv_h_eps, tab.n_eps, stencil, we)
+    j, mn = _weights((nu - nu_lo) * tab.inv_h_nu, tab.n_nu, stencil, wn)
+    k, mw = _weights((math.log(w) - tab.ln_w0) * tab.inv_h_ln_w, tab.n_w, stencil, ww)
     total = 0.0
     for a in range(me):
         for b in range(mn):
