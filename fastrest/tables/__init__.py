@@ -10,11 +10,11 @@ A table holds, on a grid over the material, everything the fast multi-material p
 
 Where things are:
 
-* :mod:`~fastrest.tables.grid`: the grid specification (:data:`DEFAULT_GRID`, :func:`normalise_grid`)
-  and the axes it implies;
+* :mod:`~fastrest.tables.grid`: the grid specification (:data:`DEFAULT_GRID`, :func:`normalise_grid`);
+  :mod:`~fastrest.tables.axes`: the axes it implies;
 * :mod:`~fastrest.tables.generation`: computing the arrays (:func:`generate`, a :class:`GeneratedTable`);
-* :mod:`~fastrest.tables.kernel`: the compiled evaluator (:class:`TableData`, ``table_value_kernel``);
-  :mod:`~fastrest.tables.w_star`: the W* reader;
+* :mod:`~fastrest.tables.data` (:class:`TableData`) and :mod:`~fastrest.tables.kernel`
+  (``table_value_kernel``): the compiled evaluator; :mod:`~fastrest.tables.w_star`: the W* reader;
 * :mod:`~fastrest.tables.table`: the :class:`Table` object; :mod:`~fastrest.tables.store`: the
   shipped table (package data ``default.h5``), the user cache, :func:`build`, :func:`read`,
   :func:`load_table`; :mod:`~fastrest.tables.default`: ``fastrest.e_star`` and friends;
@@ -28,7 +28,8 @@ from .error import AccuracyWarning
 from .file import TableFileError
 from .generation import GeneratedTable, generate
 from .grid import DEFAULT_GRID, GRID_COUNTS, QUANTITIES, grid_key, normalise_grid
-from .kernel import EPS_Y_AR_BINDS, TableData, table_value, table_value_kernel
+from .data import TableData
+from .kernel import EPS_Y_AR_BINDS, table_value, table_value_kernel
 from .store import build, cache_dir, cached_table, default_table_path, load_table, read, source_tree_table_path
 from .table import PARALLEL_MIN_POINTS, Table
 

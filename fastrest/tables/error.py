@@ -44,7 +44,21 @@ SIGN_CHANGE_FLOOR = 0.1
 
 
 class AccuracyWarning(UserWarning):
-    """A table's measured error exceeds the accuracy asked for (or fastrest's default, 1e-9)."""
+    """A table's measured error exceeds the accuracy asked for (or fastrest's default, 1e-9).
+
+    Issued by :func:`~fastrest.tables.load_table`, :func:`~fastrest.tables.build` and
+    :func:`~fastrest.tables.cached_table` (:func:`warn_if_inaccurate`); also
+    ``fastrest.table_error.AccuracyWarning`` (the same class).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as rec:
+    ...     warnings.simplefilter("always")
+    ...     warn_if_inaccurate({"e_jcg": {"max_rel_error": 1e-6, "max_error": 1e-6}}, 1e-9, "t")
+    >>> rec[0].category is AccuracyWarning
+    True
+    """
 
 
 def _materials(g, n_random, rng):
@@ -61,8 +75,32 @@ def _materials(g, n_random, rng):
 
 
 def adversarial_points(table, n_random_materials=24, n_random_speeds=16, seed=2026):
-    """(v1_star, eps_y, nu) arrays: every material of the sample at every speed of the sample up to
-    its own w_m* = 425 speed (see the module doc)."""
+    """The sample a table's error is measured on: what random points miss, and random points.
+
+    Parameters
+    ----------
+    table : Table
+        The table (its grid and V1* cells).
+    n_random_materials, n_random_speeds : int
+        Random materials besides the corners and edges of the (eps_y, nu) rectangle; random speeds
+        per material (log-uniform up to its limit).
+    seed : int
+        Random seed (the sample is reproducible).
+
+    Returns
+    -------
+    v1_star, eps_y, nu : ndarray
+        Every material of the sample at every speed of the sample up to its own w_m* = 425 speed
+        (JGM section 3.3): cell boundaries and +/- 1 ulp, cell midpoints, both sides of the switch
+        at 1.9^1.25, V1* -> 1, and the last cell before the limit (see the module doc).
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> v, e, n = adversarial_points(fastrest.load_table())
+    >>> v.shape == e.shape == n.shape
+    True
+    """
     rng = np.random.default_rng(seed)
     g = table.grid
     edges = table.cell_edges
@@ -86,7 +124,29 @@ def adversarial_points(table, n_random_materials=24, n_random_speeds=16, seed=20
 
 
 def sample_points(grid, n_points, seed):
-    """Test points over a table's domain (fixed seed): random plus hard cases."""
+    """Test points over a table's domain: random plus hard cases (bench/table_details.py).
+
+    Parameters
+    ----------
+    grid : dict or None
+        Grid specification (:func:`~fastrest.tables.normalise_grid`).
+    n_points : int
+        Random materials (uniform in eps_y, nu), each at a V1* log-uniform up to its w_m* = 425 speed.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    v1_star, eps_y, nu : ndarray
+        The points, followed by hard speeds (1, 1 + 1e-12, around 1.9^1.25, ...) and the limit
+        speeds of the first materials.
+
+    Examples
+    --------
+    >>> v, e, n = sample_points(None, 10, 1)
+    >>> v.size
+    26
+    """
     rng = np.random.default_rng(seed)
     g = normalise_grid(grid)
     e = rng.uniform(g["eps_y_min"], g["eps_y_max"], n_points)
@@ -105,11 +165,33 @@ def sample_points(grid, n_points, seed):
 
 
 def measure(table, points=None):
-    """Worst error of every quantity of ``table`` against the direct solver on ``points``
-    (default :func:`adversarial_points`): a dict name -> {metric ("relative", or "relative to
-    max(|x|, 0.1)" for a sign-changing loss), max_error, max_rel_error (the same number, kept for
-    older readers), max_abs_error, at_v1_star, at_eps_y, at_nu, by_block (worst per block of V1*
-    cells)}."""
+    """Worst error of every quantity of a table against the direct solver.
+
+    Parameters
+    ----------
+    table : Table
+    points : (ndarray, ndarray, ndarray), optional
+        (v1_star, eps_y, nu); default :func:`adversarial_points`.
+
+    Returns
+    -------
+    dict
+        Quantity name -> {metric ("relative", or "relative to max(|x|, 0.1)" for a sign-changing
+        loss), max_error, max_rel_error (the same number, kept for older readers), max_abs_error,
+        at_v1_star, at_eps_y, at_nu, by_block (worst per block of V1* cells)}. The interpolant is
+        evaluated without the w_m* <= 425 check (:func:`~fastrest.tables.kernel.interpolant_array`).
+
+    Notes
+    -----
+    Reference: :func:`fastrest.direct.impact_array` (JGM eqs 29, 38 by quadrature and Newton).
+
+    Examples
+    --------
+    >>> import numpy as np, fastrest
+    >>> pts = (np.array([5.0, 300.0]), np.array([0.005, 0.009]), np.array([0.33, 0.4]))
+    >>> measure(fastrest.load_table(), pts)["omega_m_star"]["max_error"] < 1e-9
+    True
+    """
     v, e, n = adversarial_points(table) if points is None else points
     nq = table.data.n_quantities
     ref = np.empty((nq, v.size))
@@ -144,20 +226,86 @@ def measure(table, points=None):
 
 
 def meets(errors, tol):
-    """True if every quantity's measured error is within ``tol`` (in its metric)."""
+    """Whether every quantity's measured error is within ``tol`` (in its metric).
+
+    Parameters
+    ----------
+    errors : dict
+        As :func:`measure` returns.
+    tol : float
+        The tolerance.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> meets({"e_jcg": {"max_error": 2e-10}}, 1e-9)
+    True
+    """
     return all(d["max_error"] <= tol for d in errors.values())
 
 
 def worst(errors, tol):
-    """The quantity furthest over ``tol``: (name, error, tol)."""
+    """The quantity with the largest measured error.
+
+    Parameters
+    ----------
+    errors : dict
+        As :func:`measure` returns.
+    tol : float
+        Returned as is (for messages).
+
+    Returns
+    -------
+    (str, float, float)
+        (name, its error, tol).
+
+    Examples
+    --------
+    >>> worst({"a": {"max_error": 1e-9}, "b": {"max_error": 3e-9}}, 1e-9)
+    ('b', 3e-09, 1e-09)
+    """
     name = max(errors, key=lambda k: errors[k]["max_error"])
     return name, errors[name]["max_error"], tol
 
 
 def build_to_tolerance(grid, tol, max_rounds=5, progress=False, log=None):
-    """Generate a table from ``grid`` (a dict), refining node counts until :func:`measure` meets
-    ``tol``. Returns (gen, table, errors, grid used). Raises ValueError naming the error reached and
-    what to change if ``max_rounds`` refinements do not get there."""
+    """Generate a table, refining its node counts until its measured error meets a tolerance.
+
+    Parameters
+    ----------
+    grid : dict or None
+        The starting grid (:func:`~fastrest.tables.normalise_grid`).
+    tol : float
+        Relative error asked (sign-changing losses: see the module doc); met within
+        :data:`SAFETY` x tol on :func:`adversarial_points`.
+    max_rounds : int
+        Refinements tried.
+    progress : None or bool
+        Progress bar while generating (:func:`~fastrest.tables.generate`).
+    log : callable, optional
+        Called with one line per round.
+
+    Returns
+    -------
+    gen, table, errors, grid : GeneratedTable, Table, dict, dict
+        The arrays, the table, its errors (as :func:`measure`) and the grid reached.
+
+    Raises
+    ------
+    ValueError
+        ``max_rounds`` refinements do not reach ``tol``: the message names the error reached, where,
+        and what to change.
+
+    Examples
+    --------
+    >>> gen, t, errors, g = build_to_tolerance(dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3,
+    ...     nu_max=0.35, n_nu=6, bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6), 1e-5)
+    >>> meets(errors, 1e-5)
+    True
+    """
     g = normalise_grid(grid)
     target = tol * SAFETY
     prev = None
@@ -215,7 +363,27 @@ def build_to_tolerance(grid, tol, max_rounds=5, progress=False, log=None):
 
 
 def warn_if_inaccurate(errors, tol, where):
-    """AccuracyWarning if a table's stored measured error exceeds ``tol`` (None: the default)."""
+    """Warn if a table's stored measured error exceeds a tolerance.
+
+    Parameters
+    ----------
+    errors : dict or None
+        The ``measured_error`` attribute (as :func:`measure`); None or empty: unknown accuracy.
+    tol : float or None
+        The tolerance; None: :data:`DEFAULT_TOL`.
+    where : str
+        Names the table in the message.
+
+    Warns
+    -----
+    AccuracyWarning
+        The error exceeds ``tol``, or is not recorded.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> warn_if_inaccurate(fastrest.load_table().attrs["measured_error"], 1e-9, "default")  # no warning
+    """
     tol = DEFAULT_TOL if tol is None else tol
     if not errors:
         warnings.warn(f"{where}: the table records no measured error; its accuracy is unknown",

@@ -21,8 +21,8 @@ from ..interpolation import DEGREE, share_edges
 from ..limits import v1_star_limit
 from ..unloading import N_MODELS, restitution_kernel
 from ._shared import jg_nodes
-from .grid import (QUANTITIES, Block, c_eps_y, cell_layout, energy_eps_y_axis, eps_y_blocks, normalise_grid,
-                   nu_axis, omega_axis, v1_star_top)
+from .axes import cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis, v1_star_top
+from .grid import QUANTITIES, c_eps_y, normalise_grid
 
 __all__ = ["GeneratedTable", "generate", "quantity_rows_array", "w_star_rows_array"]
 
@@ -55,6 +55,19 @@ class GeneratedTable:
         (n_eps_y_energy, n_nu, 256) (W_ep)* = 1 - F(w*), JGM eq (25); NaN past a/R = 1.
     v1_star_max : ndarray
         (n_eps_y_energy, n_nu) V1* at which w_m* = 425.
+
+    Notes
+    -----
+    What :func:`generate` returns, :func:`~fastrest.tables.schema.write_generated` writes and
+    :func:`~fastrest.tables.schema.read_generated` reads back, bit for bit.
+
+    Examples
+    --------
+    >>> from fastrest.tables.schema import read_generated
+    >>> from fastrest.tables import default_table_path
+    >>> gen, attrs = read_generated(default_table_path())
+    >>> gen.W_star.shape, len(gen.blocks)
+    ((32, 8, 256), 4)
     """
 
     grid: dict
@@ -73,8 +86,34 @@ class GeneratedTable:
 
 @jit(parallel=True)
 def quantity_rows_array(eps_row, nu_nodes, v_nodes, out):
-    """out[q, j, k]: quantity q of :data:`~fastrest.tables.QUANTITIES` at V1* = v_nodes[k] (increasing,
-    all above 1.9^1.25) for the material (eps_row[j], nu_nodes[j])."""
+    """Every tabulated quantity at the V1* nodes of a row of materials (jit, parallel over nu).
+
+    Parameters
+    ----------
+    eps_row : ndarray
+        (n_nu,) eps_y = Sy/E' (-) of each material.
+    nu_nodes : ndarray
+        (n_nu,) Poisson's ratio (-) of each material.
+    v_nodes : ndarray
+        Increasing V1* (-), all above 1.9^1.25.
+    out : ndarray
+        (quantities, n_nu, v_nodes.size), written: out[q, j, k] is quantity q of
+        :data:`~fastrest.tables.QUANTITIES` at V1* = v_nodes[k] for material j.
+
+    Notes
+    -----
+    w_m* solves F(w_m*) = V1*^2 (JGM eq 29) by Newton's method marching through the speeds, up to
+    w* = 1700 (past 425 and a/R = 1 the formulas are a smooth extension that stencils of nearby
+    materials need); e and 1 - e^2 of every unloading model from JGM eq (38).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> out = np.empty((7, 6, 1))
+    >>> quantity_rows_array(np.full(6, 0.005), np.full(6, 0.33), np.array([5.0]), out)
+    >>> round(float(out[1, 0, 0]), 6)
+    0.898078
+    """
     for j in nb.prange(nu_nodes.size):
         nu = nu_nodes[j]
         eps_y = eps_row[j]
@@ -93,9 +132,32 @@ def quantity_rows_array(eps_row, nu_nodes, v_nodes, out):
 
 @jit(parallel=True)
 def w_star_rows_array(eps_y, nu_nodes, omega_grid, out):
-    """out[j, k] = (W_ep)* = 1 - F(w*) at w* = omega_grid[k] (increasing) for the material
-    (eps_y, nu_nodes[j]), JGM eqs (19), (25): closed form up to 1.9, cumulative quadrature above,
-    NaN from the end of the law (a/R = 1) on."""
+    """W* at the w* nodes of a row of materials (jit, parallel over nu).
+
+    Parameters
+    ----------
+    eps_y : float
+        Sy/E' (-) of the row.
+    nu_nodes : ndarray
+        (n_nu,) Poisson's ratios (-).
+    omega_grid : ndarray
+        Increasing w* (-) from 0.
+    out : ndarray
+        (n_nu, omega_grid.size), written: (W_ep)* = 1 - F(w*) (-).
+
+    Notes
+    -----
+    JGM eqs (19), (25): the closed form 1 - w*^2.5 up to 1.9, cumulative Gauss-Legendre quadrature
+    of the JG law above, NaN from the end of the law (a/R = 1, eq 12) on.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> out = np.empty((1, 2))
+    >>> w_star_rows_array(0.005, np.array([0.33]), np.array([1.0, 100.0]), out)
+    >>> float(out[0, 0])
+    0.0
+    """
     for j in nb.prange(nu_nodes.size):
         nu = nu_nodes[j]
         C = c_of_nu(nu)

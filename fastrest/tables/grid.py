@@ -1,39 +1,28 @@
-"""What a table holds and where: the grid specification, its validation, and the axes it implies.
+"""What a table holds: the grid specification and its validation.
 
 A grid (a plain dict, :data:`DEFAULT_GRID` for the shipped table) fixes the materials (eps_y, nu)
 and speeds V1* a table covers and its node counts. :func:`normalise_grid` fills in defaults and
-validates it before anything is allocated; the other functions turn it into the table's axes:
+validates it before anything is allocated; :mod:`fastrest.tables.axes` turns it into the table's axes:
 
 * nu: uniform nodes;
-* the material axis c_eps_y = C(nu) eps_y (:func:`c_eps_y`): uniform in
-  xi = expm1(k c_eps_y)/k (k = ``c_eps_y_map_rate``, :func:`xi_range`), denser where a/R is large;
-  each block of V1* cells (``eps_y_blocks``) has its own number of nodes (:func:`eps_y_blocks`);
-* V1*: bit-indexed cells, finer below ``fine_v1_star_max`` (:func:`cell_layout`);
-* w* of the stored W* (:func:`omega_axis`), on a plain eps_y axis of ``n_eps_y_energy`` nodes.
-
-Axes are computed with the math module's scalar exp and log: NumPy's vectorised ones differ in the
-last bit between CPU instruction sets, and the table must be bit-reproducible.
+* the material axis C(nu) eps_y (:func:`c_eps_y`): uniform in xi = expm1(k C(nu) eps_y)/k
+  (k = ``c_eps_y_map_rate``), denser where a/R is large; each block of V1* cells
+  (``eps_y_blocks``) has its own number of nodes;
+* V1*: bit-indexed cells, finer below ``fine_v1_star_max``;
+* w* of the stored W*, on a plain eps_y axis of ``n_eps_y_energy`` nodes.
 """
 import hashlib
 import json
 import math
-from dataclasses import dataclass
-
-import numpy as np
 
 from .. import unloading as _unloading
-from .._validation import EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, check_count, check_nu, real_scalar
-from ..contact import W_SWITCH
-from ..energy import V_SWITCH
-from ..interpolation import two_level_cells
-from ..limits import v1_star_limit
+from .._validation import EPS_Y_VALIDATED, NU_VALIDATED, check_count, check_nu, real_scalar
 from ..materials import poisson_factor
 from .hdf5 import FORMAT_VERSION
 
 __all__ = ["DEFAULT_GRID", "GRID_COUNTS", "TABLE_EPS_Y", "MAP_RATE_MAX", "TABLE_BYTES_MAX", "QUANTITIES",
-           "QUANTITY_META", "STENCIL_EPS", "STENCIL_NU", "OMEGA_GRID_HERTZ", "OMEGA_GRID_JG", "Block",
-           "normalise_grid", "grid_key", "c_eps_y", "xi_range", "c_eps_y_of_xi", "nu_axis", "energy_eps_y_axis",
-           "omega_axis", "cell_layout", "eps_y_blocks", "v1_star_top"]
+           "QUANTITY_META", "STENCIL_EPS", "STENCIL_NU", "OMEGA_GRID_HERTZ", "OMEGA_GRID_JG", "normalise_grid",
+           "grid_key", "c_eps_y"]
 
 #: Every registered unloading model is tabulated, in code order: quantity 1 + 2 code is its e,
 #: 2 + 2 code its 1 - e^2.
@@ -233,109 +222,3 @@ def c_eps_y(eps_y, nu):
     0.008075
     """
     return poisson_factor(nu) * eps_y
-
-
-def xi_range(g):
-    """The mapped material axis: xi = expm1(k c_eps_y)/k (k = ``c_eps_y_map_rate``; xi = c_eps_y
-    for k = 0) from the grid's smallest to its largest C(nu) eps_y. Nodes are uniform in xi, denser
-    where C(nu) eps_y, and with it a/R, is large and the law varies fastest."""
-    k = g["c_eps_y_map_rate"]
-    lo = float(c_eps_y(g["eps_y_min"], g["nu_min"]))
-    hi = float(c_eps_y(g["eps_y_max"], g["nu_max"]))
-    return (math.expm1(k * lo) / k, math.expm1(k * hi) / k) if k > 0 else (lo, hi)
-
-
-def c_eps_y_of_xi(xi, k):
-    """Inverse of the xi map (element by element with math.log1p: bit-reproducible)."""
-    xi = np.asarray(xi, dtype=np.float64)
-    if not k > 0:
-        return xi
-    return np.array([math.log1p(k * x) / k for x in xi.ravel()]).reshape(xi.shape)
-
-
-def nu_axis(g):
-    """The nu nodes of a normalised grid (uniform)."""
-    return np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
-
-
-def energy_eps_y_axis(g):
-    """The plain eps_y nodes of the stored W* and of ``v1_star_max`` (uniform)."""
-    return np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y_energy"])
-
-
-def v1_star_top(g):
-    """The largest V1* a table of grid ``g`` holds: the largest w_m* = 425 speed over the materials
-    of its top block's nodes (clamped into the grid's eps_y range)."""
-    nus = nu_axis(g)
-    top = c_eps_y_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
-    eps = top[:, None] / c_eps_y(1.0, nus)[None, :]
-    return max(v1_star_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
-               for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
-
-
-def omega_axis():
-    """The w* nodes of the stored W*: uniform on [0, 1.9], geometric on (1.9, 425]."""
-    return np.concatenate([np.linspace(0.0, W_SWITCH, OMEGA_GRID_HERTZ),
-                           _geomspace(W_SWITCH, OMEGA_M_STAR_MAX, OMEGA_GRID_JG + 1)[1:]])
-
-
-def _geomspace(a, b, n):
-    """np.geomspace with the math module's scalar exp and log: NumPy's vectorised exp, log,
-    log1p and expm1 differ in the last bit between CPU instruction sets (AVX-512 or not), which
-    made the shipped table differ by ~1e-15 from one machine to another."""
-    la, lb = math.log(a), math.log(b)
-    out = np.array([math.exp(la + (lb - la) * i / (n - 1)) for i in range(n)])
-    out[0], out[-1] = a, b
-    return out
-
-
-def cell_layout(g, v_top):
-    """The V1* cells over (1.9^1.25, v_top]: 2^fine_bits_per_octave per octave below
-    fine_v1_star_max (where 1 - e^2 is small and curved, just above the kink at w* = 1.9), then
-    2^bits_per_octave. Returns (base_fine, base, edges): the first cell keys and the (ncell, 2)
-    [start, end] of every cell (:func:`fastrest.interpolation.two_level_cells`)."""
-    base_f, base, edges = two_level_cells(V_SWITCH, g["fine_v1_star_max"], v_top,
-                                          g["fine_bits_per_octave"], g["bits_per_octave"])
-    return int(base_f), int(base), edges
-
-
-@dataclass(frozen=True, eq=False)
-class Block:
-    """A block of V1* cells with its own material axis.
-
-    Attributes
-    ----------
-    cell0, cell1 : int
-        The cells ``cell0 <= c < cell1`` of the block.
-    cstop : int
-        End of the cells stored: ``cell1 + 1`` for every block but the last, which also stores the
-        next block's first cell on its own material grid (for the blend across the boundary).
-    n : int
-        Nodes of the block's material axis.
-    c_eps_y : ndarray
-        The block's C(nu) eps_y nodes (n,).
-    values : ndarray or None
-        (quantities, n, n_nu, cstop - cell0, 6): every quantity at the cell nodes of every
-        material node; None for a layout without values.
-    """
-
-    cell0: int
-    cell1: int
-    cstop: int
-    n: int
-    c_eps_y: np.ndarray
-    values: np.ndarray = None
-
-
-def eps_y_blocks(g, edges):
-    """The non-empty blocks of cells of grid ``g`` (:class:`Block` without values), given the
-    cells' (ncell, 2) ``edges``."""
-    out, c0 = [], 0
-    for v_end, n in g["eps_y_blocks"] + [[math.inf, g["n_eps_y"]]]:
-        c1 = int(np.searchsorted(edges[:, 1], v_end, side="right"))
-        if c1 > c0:
-            axis = c_eps_y_of_xi(np.linspace(*xi_range(g), n), g["c_eps_y_map_rate"])
-            out.append((c0, c1, n, axis))
-            c0 = c1
-    return [Block(cell0=c0, cell1=c1, cstop=c1 + (k < len(out) - 1), n=n, c_eps_y=axis)
-            for k, (c0, c1, n, axis) in enumerate(out)]

@@ -75,6 +75,13 @@ class FileContents:
         Descriptive name of every axis and dataset.
     digest : str
         SHA-256 hex digest of the file's bytes after its header (kept in the header).
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> from fastrest.tables.hdf5_read import read_table
+    >>> read_table(default_table_path()).dims["W_star"]
+    ('eps_y', 'nu', 'omega_star')
     """
 
     axes: dict
@@ -123,6 +130,17 @@ def write_table(path, axes, datasets, attrs):
 
     The same content always gives a byte-identical file: h5py writes no timestamps and
     everything is written in sorted name order.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> import numpy as np
+    >>> from fastrest.tables.hdf5_read import read_table
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = os.path.join(d, "t.h5")
+    ...     write_table(p, {"x": (np.arange(3.0), "1", "x")}, {"y": (np.ones(3), ("x",), "1", "y")}, {"title": "t"})
+    ...     read_table(p).datasets["y"]
+    array([1., 1., 1.])
     """
     path = os.fspath(path)
     axes, datasets, attrs = _prepare(axes, datasets, attrs)
@@ -248,10 +266,28 @@ def _json_default(value):
 
 
 def checksum_arrays(arrays):
-    """SHA-256 hex digest over the name, dtype, shape and bytes of every array.
+    """The ``checksum`` attribute: SHA-256 over the name, dtype, shape and bytes of every array.
 
-    Arrays are taken in sorted name order and in little-endian C order, so the digest does
-    not depend on the platform or on how the arrays are laid out in memory or in the file.
+    Parameters
+    ----------
+    arrays : dict of str to array_like
+        Every axis and dataset of a file.
+
+    Returns
+    -------
+    str
+        Lowercase hex digest (docs/table-format.md, section 1.2).
+
+    Notes
+    -----
+    Arrays are taken in sorted name order and in little-endian C order, so the digest does not
+    depend on the platform or on how the arrays are laid out in memory or in the file.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> len(checksum_arrays({"x": np.arange(3.0)}))
+    64
     """
     digest = hashlib.sha256()
     for name in sorted(arrays):
@@ -265,7 +301,30 @@ def checksum_arrays(arrays):
 
 
 def write_variable(f, name, values, units, long_name):
-    """Create one contiguous, uncompressed dataset at the root with its CF attributes."""
+    """Create one contiguous, uncompressed dataset at the root of an open file, with its CF attributes.
+
+    Parameters
+    ----------
+    f : h5py.File
+        The file being written.
+    name : str
+        Dataset name.
+    values : ndarray
+        Its data.
+    units, long_name : str
+        Its ``units`` and ``long_name`` attributes.
+
+    Returns
+    -------
+    h5py.Dataset
+
+    Examples
+    --------
+    >>> import io, h5py, numpy as np
+    >>> with h5py.File(io.BytesIO(), "w") as f:
+    ...     write_variable(f, "x", np.arange(3.0), "1", "x").attrs["units"]
+    '1'
+    """
     dset = f.create_dataset(name, data=values, track_times=False)
     dset.attrs["units"] = units
     dset.attrs["long_name"] = long_name

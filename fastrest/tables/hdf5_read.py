@@ -51,6 +51,12 @@ def read_table(path):
         its digest or its checks, is not a fastrest table, or has a newer format version than this
         fastrest reads. Nothing else: whatever a damaged or hostile file makes HDF5 or the checks
         raise becomes a TableFileError naming the file.
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> read_table(default_table_path()).attrs["format"]
+    'fastrest-table'
     """
     path = os.fspath(path)
     data, digest = read_verified(path)

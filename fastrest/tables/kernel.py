@@ -1,4 +1,4 @@
-"""The compiled table evaluator: :class:`TableData` and the kernels that interpolate it.
+"""The compiled table evaluator: the kernels that interpolate a :class:`~fastrest.tables.TableData`.
 
 Evaluation at (V1*, eps_y, nu): the degree-5 polynomial of V1*'s cell at each of the 6 x 6 nearest
 material nodes, combined with 6-point Lagrange weights in the mapped C(nu) eps_y and in nu. Below
@@ -11,7 +11,6 @@ into ``out``. :func:`table_array` and :func:`interpolant_array` are documented i
 and bench; users call :class:`~fastrest.tables.Table` methods or :mod:`fastrest.jit`.
 """
 import math
-from collections import namedtuple
 
 import numba as nb
 import numpy as np
@@ -21,12 +20,12 @@ from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
 from ..contact import omega_star_limit_kernel
 from ..critical import c_of_nu
 from ..energy import V_SWITCH
-from ..interpolation import MANTISSA_BITS, cell_index, cell_polynomial, fma, two_level_index, values_to_coeffs
-from ._shared import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows
-from .grid import STENCIL_EPS, STENCIL_NU, xi_range
+from ..interpolation import cell_index, cell_polynomial, fma, two_level_index
+from ._shared import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
+from .grid import STENCIL_EPS, STENCIL_NU
 
-__all__ = ["TableData", "OMEGA_LIMIT_TOL", "OMEGA_LIMIT", "EPS_Y_AR_BINDS", "table_data", "table_value_kernel",
-           "table_value", "table_array", "table_array_parallel", "interpolant_array"]
+__all__ = ["OMEGA_LIMIT_TOL", "OMEGA_LIMIT", "EPS_Y_AR_BINDS", "table_value_kernel", "table_value", "table_array",
+           "table_array_parallel", "interpolant_array"]
 
 #: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
 OMEGA_LIMIT_TOL = 1e-9
@@ -36,69 +35,6 @@ OMEGA_LIMIT = OMEGA_M_STAR_MAX * (1.0 + OMEGA_LIMIT_TOL)
 #: (it reaches 425 at eps_y = 0.010223 for nu = 0.5, 0.0141 for nu = 0; tested), so only wider
 #: tables pay for the per-point a/R limit.
 EPS_Y_AR_BINDS = 0.0102
-
-TableData = namedtuple("TableData", ["map_rate", "xi0", "nu0", "inv_h_nu", "n_nu",
-                                     "eps_lo", "eps_hi", "nu_lo", "nu_hi", "v_split", "shift_fine",
-                                     "base_fine", "shift", "base", "v_top", "v_safe", "cells",
-                                     "cell_block", "block_inv_h", "block_n", "block_cell0",
-                                     "block_offset", "block_qstride", "coef", "hertz", "n_quantities"])
-TableData.__doc__ = """Numba-friendly data of a :class:`~fastrest.tables.Table` (see :mod:`fastrest.jit`).
-
-Built only by :func:`table_data` (by keyword). eps_y enters through C(nu) eps_y and
-xi = expm1(map_rate C(nu) eps_y)/map_rate (xi = C(nu) eps_y for map_rate = 0), uniform from xi0
-with spacing 1/block_inv_h[b] over block_n[b] nodes in block b of cells; nu uniform from nu0,
-spacing 1/inv_h_nu, n_nu nodes. eps_lo..eps_hi, nu_lo..nu_hi: the table's materials.
-cells: (ncell, 2) [center, 1/half_width] of each V1* cell (row of V1*:
-:func:`fastrest.interpolation.two_level_index` with v_split, shift_fine, base_fine, shift, base);
-cell_block: the block of each cell; coef: 1-D, for each block b from block_offset[b] a C-order
-(n_quantities, cells of b, block_n[b], n_nu, 6) array (block_qstride[b] per quantity) of the
-polynomial coefficients of :data:`~fastrest.tables.QUANTITIES` (omega_m_star, then e and 1 - e^2 of
-each unloading model the table holds, by code); v_top: the largest V1* held; v_safe: below this V1*
-every material of the table has w_m* <= 425; hertz: (5 * N_HERTZ, 8) rows of the
-material-independent Hertz-range closed forms (see :mod:`fastrest.curve`); n_quantities: 1 + 2 x
-the number of unloading models held.
-"""
-
-
-def _hertz_table_rows(n_models):
-    """Hertz-range rows for the table's quantities (q * N_HERTZ + cell): w_m*, then e and 1 - e^2
-    of the first ``n_models`` unloading models."""
-    rows = [hertz_rows(code) for code in range(n_models)]
-    return np.ascontiguousarray(np.concatenate([rows[0][0]] + [r[k] for r in rows for k in (1, 2)]))
-
-
-def table_data(gen):
-    """The :class:`TableData` of a :class:`~fastrest.tables.generation.GeneratedTable` (the one place
-    it is built, by keyword)."""
-    g = gen.grid
-    eps, nus, edges = gen.eps_y, gen.nu, gen.edges
-    center = 0.5 * (edges[:, 0] + edges[:, 1])
-    half = 0.5 * (edges[:, 1] - edges[:, 0])
-    xi0, xi1 = xi_range(g)
-    blocks = gen.blocks
-    nq = blocks[0].values.shape[0]
-    # per block (nq, n_eps, n_nu, ncell, 6) -> (nq, ncell, n_eps, n_nu, 6), flattened one after another
-    parts = [np.ascontiguousarray(values_to_coeffs(b.values).transpose(0, 3, 1, 2, 4)).ravel() for b in blocks]
-    cell_block = np.empty(edges.shape[0], dtype=np.int64)
-    for k, b in enumerate(blocks):
-        cell_block[b.cell0:b.cell1] = k
-
-    def i64(x):
-        return np.array(x, dtype=np.int64)
-
-    return TableData(
-        map_rate=g["c_eps_y_map_rate"], xi0=float(xi0),
-        nu0=float(nus[0]), inv_h_nu=float((nus.size - 1) / (nus[-1] - nus[0])), n_nu=int(nus.size),
-        eps_lo=float(eps[0]), eps_hi=float(eps[-1]), nu_lo=float(nus[0]), nu_hi=float(nus[-1]),
-        v_split=g["fine_v1_star_max"], shift_fine=MANTISSA_BITS - g["fine_bits_per_octave"],
-        base_fine=int(gen.base_fine), shift=MANTISSA_BITS - g["bits_per_octave"], base=int(gen.base),
-        v_top=float(gen.v_top), v_safe=float(np.min(gen.v1_star_max)),
-        cells=np.ascontiguousarray(np.stack([center, 1.0 / half], 1)), cell_block=cell_block,
-        block_inv_h=np.array([(b.n - 1) / (xi1 - xi0) for b in blocks]), block_n=i64([b.n for b in blocks]),
-        block_cell0=i64([b.cell0 for b in blocks]), block_offset=i64(np.cumsum([0] + [p.size for p in parts[:-1]])),
-        block_qstride=i64([p.size // nq for p in parts]), coef=np.concatenate(parts),
-        hertz=_hertz_table_rows((nq - 1) // 2), n_quantities=nq)
-
 
 @jit(inline=True)
 def _first_node(pos, m, n):
@@ -127,11 +63,41 @@ def _lagrange6(x, x0, inv_h, n):
 
 @jit(inline=True)
 def table_value_kernel(tab, q, v, eps_y, nu):
-    """Quantity q of :data:`~fastrest.tables.QUANTITIES` (0 w_m*, 1 + 2 code e, 2 + 2 code 1 - e^2)
-    at (V1*, eps_y, nu) of the table ``tab`` (:class:`TableData`).
+    """One tabulated quantity at one point (jit, inlined into the caller's loop).
 
-    NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past a/R = 1 for
-    eps_y > 0.0102) or for invalid input (including a q the table does not hold).
+    Parameters
+    ----------
+    tab : TableData
+        The table's data (``fastrest.load_table().data``).
+    q : int
+        Index into :data:`~fastrest.tables.QUANTITIES`: 0 w_m*, 1 + 2 code e, 2 + 2 code 1 - e^2 of
+        the unloading model with that code (JCG 0, Etsion 1, Brake 2).
+    v : float
+        V1* = V1/V_c (-), JGM eq (30).
+    eps_y : float
+        Sy/E' (-).
+    nu : float
+        Poisson's ratio (-).
+
+    Returns
+    -------
+    float
+        The quantity (-); NaN outside the table (eps_y, nu or V1* out of range, w_m* > 425, or past
+        a/R = 1 for eps_y > 0.0102) or for invalid input (including a q the table does not hold).
+        No exception: callers check for NaN (the Table methods raise the named ValueError).
+
+    Notes
+    -----
+    The 6 x 6 Lagrange stencil across (xi, nu) of each node's degree-5 cell polynomial in V1*; below
+    V1* = 1.9^1.25 the closed forms (Hertz loading, JGM eq 19, elastic unloading); w_m* from
+    JGM eq (29), e from eq (38).
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest.tables import table_value_kernel
+    >>> round(table_value_kernel(fastrest.load_table().data, 1, 5.0, 0.005, 0.33), 6)
+    0.898078
     """
     if not (q >= 0 and q < tab.n_quantities):
         return np.nan
@@ -248,22 +214,82 @@ def _stencil_sum(coef, first, row, u, we, wn):
 
 @jit
 def interpolant_array(tab, q, v, eps_y, nu, out):
-    """out[k]: quantity q at (v[k], eps_y[k], nu[k]) without the w_m* <= 425 check (for measuring
-    the interpolant's error at the limit; documented internal)."""
+    """out[k]: quantity q at (v[k], eps_y[k], nu[k]) without the w_m* <= 425 check (documented internal).
+
+    Parameters
+    ----------
+    tab, q, v, eps_y, nu, out
+        As :func:`table_array`.
+
+    Notes
+    -----
+    For measuring the interpolant's error right at the limit (:mod:`fastrest.tables.error`).
+
+    Examples
+    --------
+    >>> import numpy as np, fastrest
+    >>> out = np.empty(1)
+    >>> interpolant_array(fastrest.load_table().data, 0, np.array([5.0]), np.array([0.005]), np.array([0.33]), out)
+    >>> round(float(out[0]), 6)
+    3.673079
+    """
     for k in range(v.size):
         out[k] = _interpolate(tab, q, v[k], eps_y[k], nu[k], False)
 
 
 @jit
 def table_array(tab, q, v, eps_y, nu, out):
-    """out[k] = :func:`table_value_kernel` (tab, q, v[k], eps_y[k], nu[k]) over flat float64 arrays
-    (documented internal: the Table methods validate and call this)."""
+    """out[k] = :func:`table_value_kernel` (tab, q, v[k], eps_y[k], nu[k]) (documented internal).
+
+    Parameters
+    ----------
+    tab : TableData
+    q : int
+        Quantity index (see :func:`table_value_kernel`).
+    v, eps_y, nu : ndarray
+        Flat float64 arrays of equal size: V1* (-), Sy/E' (-), Poisson's ratio (-).
+    out : ndarray
+        Flat float64 array written in place; NaN where the table has no answer.
+
+    Notes
+    -----
+    The Table methods validate their input, call this (or :func:`table_array_parallel`) and raise
+    for NaN; tests and bench call it directly.
+
+    Examples
+    --------
+    >>> import numpy as np, fastrest
+    >>> out = np.empty(2)
+    >>> table_array(fastrest.load_table().data, 1, np.array([5.0, 1e6]), np.full(2, 0.005), np.full(2, 0.33), out)
+    >>> round(float(out[0]), 6), bool(np.isnan(out[1]))
+    (0.898078, True)
+    """
     for k in range(v.size):
         out[k] = table_value_kernel(tab, q, v[k], eps_y[k], nu[k])
 
 
 @jit(parallel=True)
 def table_array_parallel(tab, q, v, eps_y, nu, out):
-    """:func:`table_array` on all cores (:func:`fastrest._threads.run_parallel` picks it)."""
+    """:func:`table_array` on all cores (same numbers; documented internal).
+
+    Parameters
+    ----------
+    tab, q, v, eps_y, nu, out
+        As :func:`table_array`.
+
+    Notes
+    -----
+    Call it through :func:`fastrest._threads.run_parallel` (a thread-unsafe Numba threading layer
+    must not be entered from two threads at once); the Table methods use it from
+    :data:`~fastrest.tables.PARALLEL_MIN_POINTS` points on.
+
+    Examples
+    --------
+    >>> import numpy as np, fastrest
+    >>> out = np.empty(1)
+    >>> table_array_parallel(fastrest.load_table().data, 1, np.array([5.0]), np.array([0.005]), np.array([0.33]), out)
+    >>> round(float(out[0]), 6)
+    0.898078
+    """
     for k in nb.prange(v.size):
         out[k] = table_value_kernel(tab, q, v[k], eps_y[k], nu[k])

@@ -12,8 +12,8 @@ from ..interpolation import CHEB_U, DEGREE
 from ..limits import v1_star_limit
 from ._shared import jg_nodes
 from .generation import GeneratedTable
-from .grid import (OMEGA_GRID_HERTZ, OMEGA_GRID_JG, QUANTITIES, QUANTITY_META, Block, cell_layout, energy_eps_y_axis,
-                   eps_y_blocks, normalise_grid, nu_axis, omega_axis)
+from .axes import Block, cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis
+from .grid import OMEGA_GRID_HERTZ, OMEGA_GRID_JG, QUANTITIES, QUANTITY_META, normalise_grid
 from .hdf5 import FORMAT_VERSION, write_table
 from .hdf5_read import read_table
 from .file import TableFileError
@@ -38,8 +38,34 @@ MAX_V1_STAR_TOP = 2.0**20
 
 
 def write_generated(gen, path, errors=None):
-    """Write a :class:`GeneratedTable` (and its measured ``errors``) to a table file, atomically
-    (:func:`fastrest.tables.hdf5.write_table`; OSError naming the file if it cannot be written)."""
+    """Write a table's arrays to a table file, atomically (docs/table-format.md).
+
+    Parameters
+    ----------
+    gen : GeneratedTable
+        The arrays (:func:`~fastrest.tables.generate`).
+    path : str or path-like
+        The file; replaced atomically (:func:`fastrest.tables.hdf5.write_table`).
+    errors : dict, optional
+        The measured error (:func:`fastrest.tables.error.measure`), stored as ``measured_error``.
+
+    Raises
+    ------
+    OSError
+        Naming the file, if it cannot be written; the old file is then unchanged.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> from fastrest.tables import generate
+    >>> gen = generate(dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
+    ...                     bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6), progress=False)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     write_generated(gen, os.path.join(d, "t.h5"))
+    ...     back, attrs = read_generated(os.path.join(d, "t.h5"))
+    >>> bool((back.W_star[:, :, :20] == gen.W_star[:, :, :20]).all())
+    True
+    """
     g = gen.grid
     ncell = gen.edges.shape[0]
     axes = {
@@ -86,13 +112,34 @@ def write_generated(gen, path, errors=None):
 
 
 def read_generated(path):
-    """Read a table file into a :class:`GeneratedTable` and its root attributes.
+    """Read a table file into its arrays and root attributes.
 
-    Verifies the file (:func:`fastrest.tables.hdf5_read.read_table`: digest, structure), its format
-    version, and that every array has the dtype (float64), dimensions, shape and finiteness the grid
-    attributes imply, with the counts checked before anything sized by them is allocated. Returns
-    (gen, attrs). Raises TableFileError (naming the file) and nothing else for a damaged, foreign or
-    hostile file.
+    Parameters
+    ----------
+    path : str or path-like
+        A table file.
+
+    Returns
+    -------
+    gen : GeneratedTable
+        The arrays, as :func:`~fastrest.tables.generate` made them.
+    attrs : dict
+        The root attributes (grid, cells, provenance, measured error).
+
+    Raises
+    ------
+    TableFileError
+        Naming the file, and nothing else, for a damaged, foreign or hostile file: the file is
+        verified (:func:`fastrest.tables.hdf5_read.read_table`: digest, structure), then its format
+        version, and that every array has the dtype (float64), dimensions, shape and finiteness the
+        grid attributes imply, with the counts checked before anything sized by them is allocated.
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> gen, attrs = read_generated(default_table_path())
+    >>> attrs["unloading_models"]
+    'jcg,etsion,brake'
     """
     td = read_table(path)
     a = td.attrs

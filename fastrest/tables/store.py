@@ -47,9 +47,21 @@ def default_table_path():
 
 
 def source_tree_table_path():
-    """Where ``fastrest build --default`` writes: the shipped table's place in the source checkout
-    this fastrest runs from (``fastrest/tables/default.h5``), or None when fastrest is installed
-    without one (from a wheel: then give ``--out``)."""
+    """Where ``fastrest build --default`` writes.
+
+    Returns
+    -------
+    pathlib.Path or None
+        The shipped table's place in the source checkout this fastrest runs from
+        (``fastrest/tables/default.h5`` beside ``pyproject.toml``), or None when fastrest is
+        installed without one (from a wheel: then give ``--out``).
+
+    Examples
+    --------
+    >>> p = source_tree_table_path()
+    >>> p is None or p.name == "default.h5"
+    True
+    """
     root = _HERE.parent.parent
     if (root / "pyproject.toml").is_file() and (root / "fastrest" / "tables") == _HERE:
         return _HERE / "default.h5"
@@ -115,8 +127,21 @@ def read(path):
 
 
 def forget(path=None):
-    """Drop the registry's entries for the file ``path`` (None: the shipped table), so that the next
-    :func:`load_table` reads it again; :func:`build` calls it for the file it writes."""
+    """Drop the registry's entries for a file, so that the next :func:`load_table` reads it again.
+
+    Parameters
+    ----------
+    path : str or path-like, optional
+        The file; None: the shipped table. :func:`build` calls this for the file it writes.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> t = fastrest.load_table()
+    >>> forget()
+    >>> fastrest.load_table() is t
+    False
+    """
     target = Path(path if path is not None else _HERE / "default.h5").resolve()
     LOADED.pop(str(target), None)
     if target == (_HERE / "default.h5").resolve():

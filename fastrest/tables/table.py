@@ -9,7 +9,8 @@ from .._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, broa
                            check_nu, check_velocity, shaped, warn_if_outside_validated)
 from ..limits import raise_out_of_range, v1_star_limit
 from ._shared import fast_scalar
-from .kernel import table_array, table_array_parallel, table_data, table_value_kernel
+from .data import table_data
+from .kernel import table_array, table_array_parallel, table_value_kernel
 from .w_star import energy_data, loading_energy_array, W_STAR_OMEGA_MAX
 
 __all__ = ["Table", "PARALLEL_MIN_POINTS"]
@@ -323,20 +324,58 @@ class Table:
     def to_xarray(self, tol=1e-3, n_check=20000):
         """This table on a rectilinear (v1_star, eps_y, nu) grid as an :class:`xarray.Dataset`.
 
-        Variables ``omega_m``, ``e_<model>``, ``loss_<model>`` (NaN past w_m* = 425), nodes placed
-        so that linear interpolation (``ds.e_jcg.interp(...)``) is within ``tol`` of the direct
-        solver where it can be; the measured errors are in the attributes. Needs xarray
-        (``pip install fastrest[xarray]``); see :mod:`fastrest.export.grid`.
+        Parameters
+        ----------
+        tol : float
+            Error asked of linear interpolation on the grid (relative to the direct solver).
+        n_check : int
+            Random points the error is measured on.
+
+        Returns
+        -------
+        xarray.Dataset
+            Variables ``omega_m``, ``e_<model>``, ``loss_<model>`` (NaN past w_m* = 425), nodes placed
+            so that linear interpolation (``ds.e_jcg.interp(...)``) is within ``tol`` of the direct
+            solver where it can be; the measured errors are in the attributes.
+
+        Raises
+        ------
+        ImportError
+            xarray is not installed (``pip install fastrest[xarray]``).
+        ValueError
+            ``tol`` or ``n_check`` out of range (see :mod:`fastrest.export.grid`).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> ds = fastrest.load_table().to_xarray(tol=1e-2, n_check=200)  # doctest: +SKIP
         """
         from ..export.grid import to_xarray
 
         return to_xarray(self, tol, n_check)
 
     def measure_error(self, points=None):
-        """Worst error of every quantity against the direct solver, on the adversarial sample of
-        :func:`fastrest.tables.error.adversarial_points` (edges, corners, every cell boundary +/- 1
-        ulp, the last cell) unless ``points`` = (v1_star, eps_y, nu) is given. A dict; see
-        :func:`fastrest.tables.error.measure`."""
+        """Worst error of every quantity against the direct solver.
+
+        Parameters
+        ----------
+        points : (ndarray, ndarray, ndarray), optional
+            (v1_star, eps_y, nu); default: the adversarial sample of
+            :func:`fastrest.tables.error.adversarial_points` (edges, corners, every cell boundary
+            +/- 1 ulp, the last cell before each material's limit).
+
+        Returns
+        -------
+        dict
+            Quantity name -> its worst error and where (:func:`fastrest.tables.error.measure`).
+
+        Examples
+        --------
+        >>> import numpy as np, fastrest
+        >>> pts = (np.array([5.0]), np.array([0.005]), np.array([0.33]))
+        >>> fastrest.load_table().measure_error(pts)["e_jcg"]["max_error"] < 1e-9
+        True
+        """
         from .error import measure
 
         return measure(self, points)

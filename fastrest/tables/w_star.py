@@ -33,16 +33,55 @@ EnergyData = namedtuple("EnergyData", ["eps_lo", "eps_hi", "inv_h_eps", "n_eps",
                                        "n_nu", "ln_w0", "inv_h_ln_w", "n_w", "ln_f", "stencil"])
 EnergyData.__doc__ = """Numba-friendly stored W* of a :class:`~fastrest.tables.Table` (``table.energy``).
 
-Built by :func:`energy_data` only. eps_y nodes uniform from eps_lo to eps_hi (spacing 1/inv_h_eps,
-n_eps nodes), nu from nu_lo to nu_hi (1/inv_h_nu, n_nu), ln w* from ln_w0 = ln 1.9 (1/inv_h_ln_w,
-n_w nodes up to ln 425); ln_f: (n_eps, n_nu, n_w) ln F = ln(1 - W*) at those nodes (NaN past a/R = 1);
-stencil: Lagrange points per axis (at most).
+Built by :func:`energy_data` only (by keyword).
+
+Parameters
+----------
+eps_lo, eps_hi, inv_h_eps, n_eps : float, float, float, int
+    The uniform eps_y = Sy/E' nodes (-): first, last, 1/spacing, count.
+nu_lo, nu_hi, inv_h_nu, n_nu : float, float, float, int
+    The uniform nu nodes (-).
+ln_w0, inv_h_ln_w, n_w : float, float, int
+    The w* nodes from 1.9 to 425, uniform in ln w*: ln 1.9, 1/spacing, count.
+ln_f : ndarray
+    (n_eps, n_nu, n_w) ln F = ln(1 - W*) at those nodes (NaN past a/R = 1), JGM eq (25).
+stencil : int
+    Lagrange points per axis (at most).
+
+Examples
+--------
+>>> import fastrest
+>>> fastrest.load_table().energy.ln_f.shape
+(32, 8, 237)
 """
 
 
 def energy_data(gen, stencil=STENCIL_W):
-    """The :class:`EnergyData` of a :class:`~fastrest.tables.generation.GeneratedTable` (by keyword);
-    ``stencil``: Lagrange points per axis (2 to 12; bench/w_star_reader.py compares them)."""
+    """The :class:`EnergyData` of a table's arrays.
+
+    Parameters
+    ----------
+    gen : GeneratedTable
+        The arrays (its ``W_star``, ``eps_y``, ``nu``, ``omega_star``).
+    stencil : int
+        Lagrange points per axis, 2 to 12 (bench/w_star_reader.py compares them).
+
+    Returns
+    -------
+    EnergyData
+
+    Raises
+    ------
+    ValueError
+        ``stencil`` outside [2, 12].
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> from fastrest.tables.schema import read_generated
+    >>> energy_data(read_generated(default_table_path())[0], stencil=6).stencil
+    6
+    """
     if not 2 <= stencil <= 12:
         raise ValueError(f"stencil must be in [2, 12]; got {stencil!r}")
     eps, nus, omega = gen.eps_y, gen.nu, gen.omega_star
@@ -75,10 +114,35 @@ def _weights(pos, n, stencil, w):
 
 @jit
 def loading_energy_kernel(tab, w, eps_y, nu):
-    """F(w*) = 1 - W* (-) of the material (eps_y, nu) from the stored W* ``tab`` (:class:`EnergyData`).
+    """The loading energy F(w*) = 1 - W* of one material from a table's stored W* (jit).
 
-    NaN outside the table (eps_y, nu beyond its range by more than a few ulp, w* outside
-    [0, 425] or NaN) and where a stencil node or the point itself lies past a/R = 1.
+    Parameters
+    ----------
+    tab : EnergyData
+        ``table.energy``.
+    w : float
+        Normalised interference w* = omega/omega_c (-).
+    eps_y : float
+        Sy/E' (-).
+    nu : float
+        Poisson's ratio (-).
+
+    Returns
+    -------
+    float
+        F (-), V1*^2 of the impact reaching w* (JGM eqs 19, 25, 29); NaN outside the table (eps_y,
+        nu beyond its range by more than a few ulp, w* outside [0, 425] or NaN) and where a stencil
+        node or the point itself lies past a/R = 1.
+
+    Notes
+    -----
+    w* <= 1.9: w*^2.5 exactly. Above: Lagrange interpolation of ln F in ln w*, eps_y and nu.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> loading_energy_kernel(fastrest.load_table().energy, 1.0, 0.005, 0.33)
+    1.0
     """
     eps_lo, eps_hi, nu_lo, nu_hi = tab.eps_lo, tab.eps_hi, tab.nu_lo, tab.nu_hi
     ln_f, stencil = tab.ln_f, tab.stencil
@@ -111,6 +175,23 @@ def loading_energy_kernel(tab, w, eps_y, nu):
 
 @jit
 def loading_energy_array(tab, w, eps_y, nu, out):
-    """out[k] = :func:`loading_energy_kernel` (tab, w[k], eps_y[k], nu[k]) over flat float64 arrays."""
+    """out[k] = :func:`loading_energy_kernel` (tab, w[k], eps_y[k], nu[k]) (jit loop).
+
+    Parameters
+    ----------
+    tab : EnergyData
+    w, eps_y, nu : ndarray
+        Flat float64 arrays of equal size: w* (-), Sy/E' (-), Poisson's ratio (-).
+    out : ndarray
+        Flat float64 array written in place (NaN where the table has no answer).
+
+    Examples
+    --------
+    >>> import numpy as np, fastrest
+    >>> out = np.empty(1)
+    >>> loading_energy_array(fastrest.load_table().energy, np.array([4.0]), np.array([0.005]), np.array([0.33]), out)
+    >>> bool(out[0] > 1.9**2.5)
+    True
+    """
     for k in range(w.size):
         out[k] = loading_energy_kernel(tab, w[k], eps_y[k], nu[k])
