@@ -246,6 +246,11 @@ def write_atomic(path, image, mode):
     mode : int
         Permission bits of the new file.
 
+    Returns
+    -------
+    str
+        The SHA-256 hex digest written into the header.
+
     Raises
     ------
     OSError
@@ -257,14 +262,15 @@ def write_atomic(path, image, mode):
     >>> import tempfile, os
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = os.path.join(d, "t.bin")
-    ...     write_atomic(p, bytearray(USERBLOCK + 8), 0o644)
+    ...     digest = write_atomic(p, bytearray(USERBLOCK + 8), 0o644)
     ...     data, digest = read_verified(p)
     >>> len(data)
     520
     """
     path = os.fspath(path)
     view = memoryview(image)
-    view[:USERBLOCK] = header(hashlib.sha256(view[USERBLOCK:]).hexdigest(), len(view))
+    digest = hashlib.sha256(view[USERBLOCK:]).hexdigest()
+    view[:USERBLOCK] = header(digest, len(view))
     _check_existing(path)
     try:
         fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)), suffix=".tmp")
@@ -281,6 +287,7 @@ def write_atomic(path, image, mode):
             os.close(fd)
         os.chmod(tmp, mode)
         os.replace(tmp, path)
+        return digest
     except BaseException as exc:
         try:
             os.remove(tmp)

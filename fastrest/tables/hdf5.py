@@ -35,6 +35,7 @@ import numpy as np
 
 from .._version import __version__
 from .file import USERBLOCK, TableFileError, write_atomic
+from .probe import trust
 
 __all__ = ["FORMAT_NAME", "FORMAT_VERSION", "CHECKSUM_ALGORITHM", "JSON_ATTRS_KEY", "FileContents",
            "TableFileError", "checksum_arrays", "write_table", "write_variable"]
@@ -112,6 +113,12 @@ def write_table(path, axes, datasets, attrs):
         Root attributes: str, int, float, 1-D numeric arrays, or dicts (stored as JSON
         strings and decoded by `read_table`).
 
+    Returns
+    -------
+    str
+        The SHA-256 digest of the file's bytes after its header (trusted when this process reads
+        the file back, :mod:`fastrest.tables.probe`).
+
     Raises
     ------
     TypeError, ValueError
@@ -138,7 +145,8 @@ def write_table(path, axes, datasets, attrs):
     >>> from fastrest.tables.hdf5_read import read_table
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = os.path.join(d, "t.h5")
-    ...     write_table(p, {"x": (np.arange(3.0), "1", "x")}, {"y": (np.ones(3), ("x",), "1", "y")}, {"title": "t"})
+    ...     digest = write_table(p, {"x": (np.arange(3.0), "1", "x")}, {"y": (np.ones(3), ("x",), "1", "y")},
+    ...                          {"title": "t"})
     ...     read_table(p).datasets["y"]
     array([1., 1., 1.])
     """
@@ -167,7 +175,9 @@ def write_table(path, axes, datasets, attrs):
                 dset.dims[i].attach_scale(scales[axis])
         for key in sorted(attrs):
             f.attrs[key] = attrs[key]
-    write_atomic(path, buffer.getbuffer(), mode)
+    digest = write_atomic(path, buffer.getbuffer(), mode)
+    trust(digest)  # bytes this process made: parsed in-process when read back
+    return digest
 
 
 def _prepare(axes, datasets, attrs):

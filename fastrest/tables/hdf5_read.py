@@ -1,9 +1,10 @@
 """Reading a table file into memory: verified bytes first, then every HDF5 object checked.
 
 The file's bytes are read with plain reads and verified (:mod:`fastrest.tables.file`: regular file,
-size, SHA-256 digest in the header) before HDF5 parses them from memory; then every object is
-checked (datasets only, no links, no virtual or external storage, float64 or integer data inside
-the file, bounded attributes) before any array is allocated. The layout is
+size, SHA-256 digest in the header) before HDF5 parses them from memory, first in a check process
+unless the digest is trusted (:mod:`fastrest.tables.probe`: HDF5 can crash or hang on a hostile
+file); every object is checked (datasets only, no links, no virtual or external storage, float64
+or integer data inside the file, bounded attributes) before any array is allocated. The layout is
 :mod:`fastrest.tables.hdf5`.
 """
 from dataclasses import replace
@@ -17,9 +18,10 @@ import numpy as np
 
 from .._version import __version__
 from .file import TableFileError, read_verified
+from .probe import check_image
 from .hdf5 import CHECKSUM_ALGORITHM, FORMAT_NAME, FORMAT_VERSION, JSON_ATTRS_KEY, FileContents, checksum_arrays
 
-__all__ = ["read_table"]
+__all__ = ["read_table", "parse_image", "walk_image"]
 
 #: Most objects at the root, and attributes per object, a table file may have.
 _MAX_OBJECTS = 1024
@@ -31,9 +33,10 @@ def read_table(path):
     """Read a table file written by `write_table` into memory.
 
     The file is read with plain reads and verified (regular file, size, SHA-256 digest of its
-    bytes, see :mod:`fastrest.tables.file`) before HDF5 parses it from memory; then every object is
-    checked (datasets only, no links, no virtual or external storage, float64 or integer data
-    inside the file, bounded attributes) before any array is allocated.
+    bytes, see :mod:`fastrest.tables.file`) before HDF5 parses it from memory, first in a check
+    process unless its digest is trusted (:func:`fastrest.tables.probe.check_image`); then every
+    object is checked (datasets only, no links, no virtual or external storage, float64 or integer
+    data inside the file, bounded attributes) before any array is allocated.
 
     Parameters
     ----------
@@ -49,8 +52,8 @@ def read_table(path):
     TableFileError
         If the file does not exist, is not a regular file, is not a (complete) table file, fails
         its digest or its checks, is not a fastrest table, or has a newer format version than this
-        fastrest reads. Nothing else: whatever a damaged or hostile file makes HDF5 or the checks
-        raise becomes a TableFileError naming the file.
+        fastrest reads, or makes HDF5 crash or hang in the check process. Nothing else: whatever a
+        damaged or hostile file makes HDF5 or the checks raise becomes a TableFileError naming the file.
 
     Examples
     --------
@@ -60,20 +63,10 @@ def read_table(path):
     """
     path = os.fspath(path)
     data, digest = read_verified(path)
-    try:
-        # HDF5 reads the verified bytes from memory: the file on disk may change meanwhile.
-        fapl = h5py.h5p.create(h5py.h5p.FILE_ACCESS)
-        fapl.set_fapl_core(backing_store=False)
-        fapl.set_file_image(data)
-        name = f"fastrest-table-image-{next(_IMAGE_IDS)}".encode()
-        with h5py.File(h5py.h5f.open(name, h5py.h5f.ACC_RDONLY, fapl=fapl)) as f:
-            table = _read_open_file(f, path, len(data))
-    except TableFileError:
-        raise
-    except Exception as exc:  # anything a hostile file provokes in HDF5, h5py or the checks
-        raise TableFileError(f"{path}: cannot be read as a table file (corrupted or not a fastrest "
-                             f"table): {type(exc).__name__}: {exc}") from exc
-
+    # HDF5 reads the verified bytes from memory (the file on disk may change meanwhile), after a
+    # check process parsed the same bytes, unless the digest is trusted (the shipped table's)
+    check_image(data, digest, path)
+    table = parse_image(data, path)
     stored = table.attrs.get("checksum")
     if not isinstance(stored, str):
         raise TableFileError(f"{path}: no (string) checksum attribute; the file is incomplete or "
@@ -86,6 +79,91 @@ def read_table(path):
         raise TableFileError(f"{path}: checksum mismatch (stored {stored}, computed "
                              f"{computed}); the file is corrupted, rebuild the table")
     return replace(table, digest=digest)
+
+
+def _open_image(data):
+    fapl = h5py.h5p.create(h5py.h5p.FILE_ACCESS)
+    fapl.set_fapl_core(backing_store=False)
+    fapl.set_file_image(data)
+    name = f"fastrest-table-image-{next(_IMAGE_IDS)}".encode()
+    return h5py.File(h5py.h5f.open(name, h5py.h5f.ACC_RDONLY, fapl=fapl))
+
+
+def parse_image(data, path):
+    """Parse a table file's bytes with HDF5, from memory, checking every object before reading it.
+
+    Parameters
+    ----------
+    data : bytes
+        The whole file (header included), already verified against its digest.
+    path : str
+        The file (for messages).
+
+    Returns
+    -------
+    FileContents
+        Without ``digest``; the ``checksum`` attribute is not checked yet (:func:`read_table` does).
+
+    Raises
+    ------
+    TableFileError
+        Whatever the file makes HDF5, h5py or the structure checks raise, naming the file. (HDF5
+        itself may crash or hang on a hostile file: :func:`read_table` runs this in a check process
+        first, :mod:`fastrest.tables.probe`.)
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> from fastrest.tables.file import read_verified
+    >>> data, _ = read_verified(default_table_path())
+    >>> parse_image(data, "default.h5").dims["W_star"]
+    ('eps_y', 'nu', 'omega_star')
+    """
+    try:
+        with _open_image(data) as f:
+            return _read_open_file(f, path, len(data))
+    except TableFileError:
+        raise
+    except Exception as exc:  # anything a hostile file provokes in HDF5, h5py or the checks
+        raise TableFileError(f"{path}: cannot be read as a table file (corrupted or not a fastrest "
+                             f"table): {type(exc).__name__}: {exc}") from exc
+
+
+def walk_image(data):
+    """Visit every object of a table file's bytes and read every attribute and dataset (the check
+    process runs this after :func:`parse_image` accepted the bytes, which bounds every size).
+
+    Parameters
+    ----------
+    data : bytes
+        The whole file.
+
+    Returns
+    -------
+    int
+        The number of objects visited.
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> from fastrest.tables.file import read_verified
+    >>> walk_image(read_verified(default_table_path())[0])
+    45
+    """
+    seen = []
+
+    def visit(name, obj):
+        for key in obj.attrs:
+            obj.attrs[key]
+        if isinstance(obj, h5py.Dataset):
+            obj[()]
+        seen.append(name)
+
+    with _open_image(data) as f:
+        for key in f.attrs:
+            f.attrs[key]
+        f.visititems(visit)
+    return len(seen)
 
 
 def _read_open_file(f, path, limit):

@@ -49,6 +49,11 @@ def write_generated(gen, path, errors=None):
     errors : dict, optional
         The measured error (:func:`fastrest.tables.error.measure`), stored as ``measured_error``.
 
+    Returns
+    -------
+    str
+        The SHA-256 digest of the file's bytes after its header.
+
     Raises
     ------
     OSError
@@ -61,7 +66,7 @@ def write_generated(gen, path, errors=None):
     >>> gen = generate(dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
     ...                     bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6), progress=False)
     >>> with tempfile.TemporaryDirectory() as d:
-    ...     write_generated(gen, os.path.join(d, "t.h5"))
+    ...     digest = write_generated(gen, os.path.join(d, "t.h5"))
     ...     back, attrs = read_generated(os.path.join(d, "t.h5"))
     >>> bool((back.W_star[:, :, :20] == gen.W_star[:, :, :20]).all())
     True
@@ -108,7 +113,7 @@ def write_generated(gen, path, errors=None):
     })
     if errors is not None:
         attrs["measured_error"] = errors
-    write_table(path, axes, datasets, attrs)
+    return write_table(path, axes, datasets, attrs)
 
 
 def read_generated(path):

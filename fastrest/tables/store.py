@@ -257,6 +257,8 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
     Notes
     -----
     ``build(path)`` with the same grid gives the same bytes on every machine (docs/table-format.md).
+    Building the shipped table's file (``fastrest build --default``) also records its digest in
+    ``fastrest/tables/_default_digest.py``: commit both.
 
     Examples
     --------
@@ -291,11 +293,27 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
         errors = table.measure_error() if measure else None
         if errors is not None:
             error.warn_if_inaccurate(errors, None, "fastrest.tables.build")
-    write_generated(gen, path, errors)
+    digest = write_generated(gen, path, errors)
+    if path.resolve() == (_HERE / "default.h5").resolve():
+        _record_default_digest(digest)
     forget(path)
     table.attrs = {"measured_error": errors} if errors else {}
     table.path = str(path)
     return table
+
+
+def _record_default_digest(digest):
+    """Write the shipped table's digest into the package (``fastrest build --default``): the one
+    table file fastrest parses without a check process (:mod:`fastrest.tables.probe`)."""
+    text = ('"""The SHA-256 digest of the shipped table\'s bytes after its header (fastrest/tables/default.h5).\n\n'
+            "Written by `fastrest build --default` (do not edit): fastrest parses the shipped table in-process\n"
+            "only while its digest is this one; any other table file is parsed in a check process first\n"
+            '(fastrest.tables.probe)."""\n'
+            f"#: Hex digest (docs/table-format.md, section 1.0).\nSHA256 = {digest!r}\n")
+    target = _HERE / "_default_digest.py"
+    tmp = target.with_suffix(".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, target)
 
 
 def cached_table(grid=None, progress=None, tol=None):
