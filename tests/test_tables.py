@@ -689,3 +689,18 @@ def test_bad_eps_y_blocks_rejected():
                          ([[16.0, 3]], r"in \[6, 4096\]"), ("x", "pairs")):
         with pytest.raises((TypeError, ValueError), match=word):
             tables.normalise_grid(eps_y_blocks=blocks)
+
+
+def test_old_public_names_still_work():
+    """Names users may import from before fastrest.tables became a package."""
+    import fastrest.table_error as te
+
+    assert te.AccuracyWarning is tables.AccuracyWarning and te.measure is tables.error.measure
+    assert tables.table_value is tables.table_value_kernel
+    assert fastrest.TableFileError is tables.TableFileError
+    assert tables.TableData.__module__ == "fastrest.tables"
+    for name in ("Table", "load_table", "cached_table", "build", "generate", "read", "DEFAULT_GRID", "GRID_COUNTS",
+                 "QUANTITIES", "normalise_grid", "grid_key", "default_table_path", "omega_m_star", "e_star",
+                 "loss_star", "EPS_Y_AR_BINDS", "PARALLEL_MIN_POINTS", "cache_dir", "source_tree_table_path"):
+        assert name in tables.__all__, name
+    assert not [n for n in tables.__all__ if n.startswith("_")]

@@ -21,7 +21,8 @@ Where things are:
 * :mod:`~fastrest.tables.error`: the error against the direct solver, tables built to a tolerance;
 * :mod:`~fastrest.tables.schema` (arrays <-> file), :mod:`~fastrest.tables.hdf5` and
   :mod:`~fastrest.tables.hdf5_read` (the HDF5 layout), :mod:`~fastrest.tables.file` (the verified
-  bytes): the file format of docs/table-format.md.
+  bytes): the file format of docs/table-format.md; :mod:`~fastrest.tables.probe`: untrusted files
+  are parsed in a check process first.
 """
 from .default import e_star, loss_star, omega_m_star
 from .error import AccuracyWarning
