@@ -6,7 +6,7 @@ to find it rather than at random: every V1* cell boundary and +/- 1 ulp around i
 midpoint, both sides of the switch at 1.9^1.25, V1* -> 1, the last cell before each material's
 w_m* = 425 speed down to the limit itself; materials on the corners and densely along the edges of
 the table's (eps_y, nu) rectangle (including its last ulp), and random ones inside. The sample is
-denser than, and independent of, the one the table is built against (fastrest.table_error).
+denser than, and independent of, the one the table is built against (fastrest.tables.error).
 
 Metrics: relative, except for a 1 - e^2 that changes sign (Etsion, Brake: e > 1 just above the
 switch), given both absolute and relative to max(|1 - e^2|, 0.1). Also: the largest jump at a cell
@@ -67,11 +67,11 @@ def errors(got, ref, sign_changing):
 
 def sweep_table(cfg, log):
     t = fastrest.load_table()
-    edges = t.gen["edges"][:, 0]
+    edges = t.cell_edges[:, 0]
     rng = np.random.default_rng(7)
     v, e, n = [], [], []
     for eps, nu in table_materials(cfg["n_edge"], cfg["n_random"], 11):
-        s = speeds(np.concatenate([edges, [t.gen["edges"][-1, 1]]]), direct.v1_star_limit(eps, nu) * (1 - 2e-9), rng)
+        s = speeds(np.concatenate([edges, [t.cell_edges[-1, 1]]]), direct.v1_star_limit(eps, nu) * (1 - 2e-9), rng)
         v.append(s), e.append(np.full(s.size, eps)), n.append(np.full(s.size, nu))
     v, e, n = np.concatenate(v), np.concatenate(e), np.concatenate(n)
     out = {"points": int(v.size)}
@@ -118,7 +118,7 @@ def sweep_curves(cfg, log):
         # the table's cell boundaries for this material (inside its range)
         t = fastrest.load_table()
         lim = direct.v1_star_limit(eps, nu)
-        inner = t.gen["edges"][1:, 0]
+        inner = t.cell_edges[1:, 0]
         inner = inner[inner < lim * 0.999]
         for f, d in ((lambda x: fastrest.omega_m_star(x, eps, nu), 1), (lambda x: fastrest.e_star(x, eps, nu), -1)):
             j, a = boundary_jumps(f, inner, d)

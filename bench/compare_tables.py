@@ -2,7 +2,7 @@
 
 Prints, per dataset present in both, the largest relative difference (NaNs must coincide), and the
 datasets only one file has. Used to show that adding an unloading model left the other models'
-values as they were (e.g. ``git show HEAD~1:tables/default.h5 > /tmp/old.h5``).
+values as they were (e.g. ``git show HEAD~1:fastrest/tables/default.h5 > /tmp/old.h5``).
 """
 import sys
 

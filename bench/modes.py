@@ -12,7 +12,7 @@ from fastrest import models, tables
 from fastrest.curve import Curve
 from fastrest.curve_data import BITS_PER_OCTAVE, build_curve_data
 from fastrest.direct import v1_star_limit
-from fastrest.tables import _table_array
+from fastrest.tables.kernel import table_array
 
 from . import kernels
 from .points import CENTRE, SEED, point_set, reference, worst
@@ -136,7 +136,7 @@ def multi_material(cfg, log):
     scn = fastrest.scene(list(zip(ps.eps_m, ps.nu_m)))
     tab = fastrest.load_table()
     o = np.empty(v.size)
-    _table_array(tab.data, 1, v, e, nu, o)
+    table_array(tab.data, 1, v, e, nu, o)
     keep = np.isfinite(o)
     v, e, nu, kidx = (np.ascontiguousarray(a[keep]) for a in (v, e, nu, kidx))
     n = v.size
@@ -172,7 +172,7 @@ def curve_from_table(tab, eps_y, nu, bits=BITS_PER_OCTAVE):
         n_ = np.full(v.size, nu)
         out = np.empty((3, v.size))
         for q in (0, 1, 2):
-            _table_array(tab.data, q, v, e_, n_, out[q])
+            table_array(tab.data, q, v, e_, n_, out[q])
         if not np.isfinite(out).all():
             raise RuntimeError("table refused a curve node")
         return out

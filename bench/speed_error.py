@@ -18,7 +18,8 @@ import fastrest
 from fastrest import models, tables
 from fastrest.curve import Curve
 from fastrest.curve_data import BITS_PER_OCTAVE, build_curve_data
-from fastrest.tables import Table, _table_array
+from fastrest.tables import Table
+from fastrest.tables.kernel import table_array
 
 from . import kernels
 from .points import error_subset, point_set, reference, worst
@@ -60,7 +61,7 @@ def table_errors(tab, ps, ref):
     out = {}
     for q, iq in QTY.items():
         got = np.empty(ps.size)
-        _table_array(tab.data, iq, ps.v, ps.eps_y, ps.nu, got)
+        table_array(tab.data, iq, ps.v, ps.eps_y, ps.nu, got)
         refused = ~np.isfinite(got)
         err, i = worst(got, ref[q], mask=~refused, floor=FLOOR.get(q, 0.0))
         out[q] = {"max_rel_error": err, "at_v1_star": float(ps.v[i]), "at_eps_y": float(ps.eps_y[i]),
@@ -131,7 +132,7 @@ def run(cfg, log=print):
     keep = np.ones(v.size, bool)
     for t in [default_tab, *tabs.values()]:
         o = np.empty(v.size)
-        _table_array(t.data, 1, v, e, n, o)
+        table_array(t.data, 1, v, e, n, o)
         keep &= np.isfinite(o)
     dropped = int((~keep).sum())
     v, e, n = (np.ascontiguousarray(a[keep]) for a in (v, e, n))

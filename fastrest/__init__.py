@@ -41,7 +41,7 @@ from . import direct
 from .curve import Curve, curve
 from .scene import Scene, scene
 from .tables import Table, load_table, omega_m_star, e_star, loss_star
-from ._hdf5 import TableFileError
+from .tables import TableFileError
 from .force_law import ContactLaw, contact_law
 
 __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",

@@ -143,15 +143,15 @@ def _cmd_build(args):
             return 2
         out = args.out or tables.source_tree_table_path()
         if out is None:
-            print("fastrest build: --default writes tables/default.h5 of a source checkout; this "
+            print("fastrest build: --default writes fastrest/tables/default.h5 of a source checkout; this "
                   "fastrest is installed without one, so give --out FILE", file=sys.stderr)
             return 2
     else:
         out = args.out
-    from .table_error import DEFAULT_TOL
+    from .tables.error import DEFAULT_TOL
 
     tol = args.tol if args.tol is not None else (DEFAULT_TOL if args.default else None)
-    from .table_error import AccuracyWarning
+    from .tables.error import AccuracyWarning
 
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
@@ -178,7 +178,7 @@ def _print_errors(errors):
 
 
 def _cmd_info(args):
-    from . import _hdf5, tables
+    from . import tables
 
     if args.file is None:
         try:
@@ -188,7 +188,7 @@ def _cmd_info(args):
             return 1
     try:
         t = tables.read(args.file)
-    except (_hdf5.TableFileError, OSError) as exc:
+    except (tables.TableFileError, OSError) as exc:
         print(f"fastrest info: invalid table: {exc}", file=sys.stderr)
         return 1
     a = t.attrs
@@ -218,6 +218,7 @@ def _cmd_warmup(args):
     import fastrest
     from . import _threads, rough, tables
     from .jit import e_curve, e_scene, e_table
+    from .tables.kernel import table_array_parallel
 
     def step(name, fn):
         t = time.perf_counter()
@@ -241,7 +242,7 @@ def _cmd_warmup(args):
         step("table: scalar e_star", lambda: (fastrest.e_star(5.0, 0.005, 0.33), t.loss_star(5.0, 0.005, 0.33)))
         step("table: batch kernels (serial, parallel)",
              lambda: (fastrest.e_star([5.0], 0.005, 0.33),
-                      _threads.run_parallel(tables._table_array_parallel, None, t.data, 1, big, big * 0.001,
+                      _threads.run_parallel(table_array_parallel, None, t.data, 1, big, big * 0.001,
                                             big * 0.066, np.empty(big.size))))
         step("jit functions (curve, scene, table)", lambda: _warm_jit(c, s, t, e_curve, e_scene, e_table))
         step("rough surfaces (explicit, statistical)",
@@ -346,7 +347,7 @@ def main(argv=None):
                                     "and V1*. Defaults are the shipped table's grid.")
     pb.add_argument("--out", help="output file (default: the user cache, $FASTREST_CACHE_DIR)")
     pb.add_argument("--default", action="store_true",
-                    help="rebuild the shipped tables/default.h5 of this source checkout")
+                    help="rebuild the shipped fastrest/tables/default.h5 of this source checkout")
     for k, typ in (("eps_y_min", float), ("eps_y_max", float), ("n_eps_y", int), ("nu_min", float),
                    ("nu_max", float), ("n_nu", int), ("bits_per_octave", int), ("c_eps_y_map_rate", float),
                    ("fine_bits_per_octave", int), ("fine_v1_star_max", float), ("n_eps_y_energy", int)):

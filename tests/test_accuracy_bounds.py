@@ -13,7 +13,7 @@ import fastrest
 from fastrest import direct, tables
 from fastrest import jit as frj
 from fastrest.interpolation import cell_edges
-from fastrest.table_error import AccuracyWarning
+from fastrest.tables import AccuracyWarning
 
 V_SWITCH = 1.9**1.25
 
@@ -86,13 +86,13 @@ def test_curves_continuous_and_monotone_across_cell_boundaries(eps, nu, unloadin
 def test_table_continuous_across_cell_and_block_boundaries(eps, nu):
     t = fastrest.load_table()
     lim = direct.v1_star_limit(eps, nu)
-    inner = t.gen["edges"][1:, 0]
+    inner = t.cell_edges[1:, 0]
     inner = inner[inner < lim * 0.999]
     jw = _jumps(lambda x: t.omega_m_star(x, eps, nu), inner)
     je = _jumps(lambda x: t.e_star(x, eps, nu), inner)
     assert np.abs(jw).max() <= 16 and np.abs(je).max() <= 16   # few ulp of the 6 x 8 stencil sums
     assert jw.min() >= -16 and je.max() <= 16
-    blocks = [b["cell0"] for b in t.gen["blocks"][1:]]
+    blocks = [c0 for c0, _ in t.block_cells[1:]]
     assert len(blocks) == 3  # the blend across V1* = 128, 256, 512 is exercised
 
 

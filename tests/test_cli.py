@@ -159,7 +159,7 @@ def test_info_default_table(capsys):
     path = tables.default_table_path()
     code, out, err = run(["info", str(path)], capsys)
     assert code == 0, err
-    assert f"version {fastrest._hdf5.FORMAT_VERSION}" in out
+    assert f"version {fastrest.tables.hdf5.FORMAT_VERSION}" in out
     assert "fastrest-table" in out
     assert "max relative error" in out
     for q in ("omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion", "e_brake", "loss_brake"):
@@ -167,7 +167,7 @@ def test_info_default_table(capsys):
     code, out, err = run(["info", str(path), "--json"], capsys)
     assert code == 0, err
     doc = json.loads(out)
-    assert doc["format_version"] == fastrest._hdf5.FORMAT_VERSION
+    assert doc["format_version"] == fastrest.tables.hdf5.FORMAT_VERSION
     assert set(doc["measured_error"]) == {"omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion",
                                           "e_brake", "loss_brake"}
 
@@ -222,9 +222,9 @@ def test_build_bad_grid_is_an_error(capsys, tmp_path):
 
 
 def test_build_default_targets_source_tree_not_cwd(capsys, tmp_path, monkeypatch):
-    """`build --default` rebuilds the checkout's tables/default.h5 from any working directory;
-    an install without a source tree needs --out."""
-    assert tables.source_tree_table_path() == REPO / "tables" / "default.h5"
+    """`build --default` rebuilds the checkout's fastrest/tables/default.h5 from any working
+    directory; an install without a source tree needs --out."""
+    assert tables.source_tree_table_path() == REPO / "fastrest" / "tables" / "default.h5"
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(tables, "source_tree_table_path", lambda: None)
     code, out, err = run(["build", "--default", "--no-progress"], capsys)

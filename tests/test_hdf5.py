@@ -1,4 +1,4 @@
-"""Tests of the HDF5 table storage layer (fastrest._hdf5)."""
+"""Tests of the HDF5 table storage layer (fastrest.tables.hdf5, hdf5_read, file)."""
 import os
 import signal
 import subprocess
@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 import fastrest
-from fastrest import _hdf5, _tablefile
-from fastrest._hdf5 import FORMAT_NAME, FORMAT_VERSION, TableFileError, read_table, write_table
+from fastrest.tables import file as tablefile, hdf5
+from fastrest.tables.hdf5 import FORMAT_NAME, FORMAT_VERSION, TableFileError, write_table
+from fastrest.tables.hdf5_read import read_table
 from damaged_corpus import reseal
 
 
@@ -267,7 +268,7 @@ def test_exception_while_writing_keeps_old_file(tmp_path, monkeypatch):
     path = write_example(tmp_path / "table.h5")
     before = path.read_bytes()
     calls = []
-    original = _hdf5._write_variable
+    original = hdf5.write_variable
 
     def failing_write(f, name, *args):
         calls.append(name)
@@ -277,7 +278,7 @@ def test_exception_while_writing_keeps_old_file(tmp_path, monkeypatch):
             raise RuntimeError("simulated failure while writing")
         return original(f, name, *args)
 
-    monkeypatch.setattr(_hdf5, "_write_variable", failing_write)
+    monkeypatch.setattr(hdf5, "write_variable", failing_write)
     axes, datasets, attrs = example()
     datasets["restitution"] = (np.zeros((5, 3)), ("velocity", "nu"), "1", "new content")
     with pytest.raises(RuntimeError, match="simulated"):
@@ -290,7 +291,7 @@ def test_exception_while_writing_keeps_old_file(tmp_path, monkeypatch):
 
 
 class FailingOs:
-    """``os`` for fastrest._tablefile whose n-th write fails with ``code`` (after a short write)."""
+    """``os`` for fastrest.tables.file whose n-th write fails with ``code`` (after a short write)."""
 
     def __init__(self, code, fail_at=2):
         self.code, self.fail_at, self.writes = code, fail_at, 0
@@ -309,8 +310,8 @@ class FailingOs:
 def test_write_error_gives_oserror_naming_path_and_keeps_old_file(tmp_path, monkeypatch, code):
     path = write_example(tmp_path / "table.h5")
     before = path.read_bytes()
-    monkeypatch.setattr(_tablefile, "_CHUNK", 1024)
-    monkeypatch.setattr(_tablefile, "os", FailingOs(code, fail_at=3))
+    monkeypatch.setattr(tablefile, "CHUNK_BYTES", 1024)
+    monkeypatch.setattr(tablefile, "os", FailingOs(code, fail_at=3))
     axes, datasets, attrs = example()
     datasets["restitution"] = (np.zeros((5, 3)), ("velocity", "nu"), "1", "new content")
     with pytest.raises(OSError) as excinfo:
@@ -351,12 +352,12 @@ def test_fifo_is_refused_without_blocking(tmp_path):
 CHILD = textwrap.dedent("""
     import os, sys, time
     import numpy as np
-    from fastrest import _hdf5, _tablefile
+    from fastrest.tables import file as tablefile, hdf5
 
     target, marker = sys.argv[1], sys.argv[2]
 
     class StallingOs:
-        # os for _tablefile: the first write goes through, then the writer waits to be killed
+        # os for fastrest.tables.file: the first write goes through, then the writer waits to be killed
         def __getattr__(self, name):
             return getattr(os, name)
 
@@ -366,11 +367,11 @@ CHILD = textwrap.dedent("""
             time.sleep(60)
             return n
 
-    _tablefile._CHUNK = 4096
-    _tablefile.os = StallingOs()
+    tablefile.CHUNK_BYTES = 4096
+    tablefile.os = StallingOs()
     x = np.linspace(0.0, 1.0, 10_000)
     datasets = {f"d{i:03d}": (x * i, ("x",), "1", f"dataset {i}") for i in range(200)}
-    _hdf5.write_table(target, {"x": (x, "1", "x")}, datasets, {"title": "new"})
+    hdf5.write_table(target, {"x": (x, "1", "x")}, datasets, {"title": "new"})
 """)
 
 

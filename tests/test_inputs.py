@@ -143,8 +143,8 @@ def test_wide_table_stops_at_a_over_r_limit():
             with pytest.raises(ValueError, match="a/R reaches 1"):
                 t.omega_m_star(v, eps, nu)
         out = np.empty(1)
-        from fastrest.tables import _table_array
-        _table_array(t.data, 1, np.array([lim * 1.001]), np.array([eps]), np.array([nu]), out)
+        from fastrest.tables.kernel import table_array
+        table_array(t.data, 1, np.array([lim * 1.001]), np.array([eps]), np.array([nu]), out)
         assert math.isnan(out[0])
 
 

@@ -17,6 +17,7 @@ import pytest
 
 import damaged_corpus
 from fastrest import TableFileError, tables
+from fastrest.tables import store
 
 REPO = Path(__file__).resolve().parents[1]
 TINY_GRID = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
@@ -176,7 +177,7 @@ def test_damaged_cached_table_is_rebuilt_with_a_warning(tmp_path, monkeypatch, t
     cache = tmp_path / "cache"
     cache.mkdir()
     monkeypatch.setenv("FASTREST_CACHE_DIR", str(cache))
-    monkeypatch.setattr(tables, "_LOADED", {})
+    monkeypatch.setattr(store, "LOADED", {})
     path = cache / f"{tables.grid_key(TINY_GRID)}.h5"
     data = tiny.read_bytes()
     for damage in (data[:len(data) // 2], data[:1000] + bytes(4096) + data[5096:], b""):
@@ -185,7 +186,7 @@ def test_damaged_cached_table_is_rebuilt_with_a_warning(tmp_path, monkeypatch, t
             t = tables.cached_table(TINY_GRID, progress=False)
         assert str(path) in str(rec[0].message)
         assert tables.read(path).grid == t.grid == tables.normalise_grid(TINY_GRID)
-        tables._LOADED.clear()
+        store.LOADED.clear()
     # a FIFO in the cache's place is replaced, without blocking
     path.unlink()
     os.mkfifo(path)
@@ -230,3 +231,119 @@ def test_table_file_error_is_the_only_error(tiny, tmp_path):
         with pytest.raises(TableFileError) as exc:
             tables.load_table(p)
         assert str(p) in str(exc.value)
+
+
+# --- files resealed after damage reach HDF5 only in a check process (issue 13, item 2) -------------
+
+def _resealed(n, pick=None):
+    cases = [c for c in damaged_corpus.byte_cases(tables.default_table_path(), 0, 0, 2024, n_resealed=n)
+             if c[0] == "resealed" and (pick is None or c[1] in pick)]
+    return [(c, name, damaged_corpus.LazyFile(Path(tempfile.gettempdir()) / f"fastrest-{os.getpid()}-{name}.h5", make))
+            for c, name, make in cases]
+
+
+def _check_resealed(cases):
+    from corpus_runner import fingerprint
+
+    results = damaged_corpus.run_corpus(cases, timeout=120.0)
+    base = fingerprint(tables.read(tables.default_table_path()))
+    wrong = damaged_corpus.resealed_ok(results, base)
+    counts, _ = damaged_corpus.summary(results)
+    print(counts)
+    assert not wrong, wrong
+    return results
+
+
+def test_resealed_damage_is_refused_or_harmless():
+    """20 metadata flips of the shipped table with a recomputed digest, each loaded in a child
+    process: TableFileError, or (a byte HDF5 never reads) the shipped table's numbers exactly; the
+    HDF5 parser's crashes and hangs stay in fastrest's check process."""
+    _check_resealed(_resealed(20))
+
+
+def test_resealed_file_that_crashes_hdf5_is_refused():
+    """resealed-14776 (seed 2024) aborted the process inside HDF5 (SIGABRT, in-memory file image)
+    before the check process; now the check process dies and the caller gets TableFileError."""
+    results = _check_resealed(_resealed(300, pick={"resealed-14776"}))
+    assert [r[2] for r in results] == ["refused"]
+
+
+@pytest.mark.slow
+def test_resealed_corpus_300_is_refused_or_harmless():
+    """The audit's setting: 300 resealed metadata flips (before the check process: 171 accepted with
+    the same numbers, 128 refused, 1 crash of the whole process)."""
+    results = _check_resealed(_resealed(300))
+    assert sum(r[2] == "refused" for r in results) >= 100
+
+
+def test_check_process_crash_hang_and_refusal_are_table_file_errors(monkeypatch):
+    from fastrest.tables import probe
+
+    digest = "f" * 64
+    monkeypatch.setattr(probe, "CHECKED", set())
+    monkeypatch.setattr(probe, "_CHILD", "import os, signal; os.kill(os.getpid(), signal.SIGSEGV)")
+    with pytest.raises(TableFileError, match=r"x\.h5: the HDF5 library crashed \(SIGSEGV\)"):
+        probe.check_image(b"data", digest, "x.h5")
+    monkeypatch.setattr(probe, "_CHILD", "import time; time.sleep(60)")
+    monkeypatch.setattr(probe, "CHECK_TIMEOUT", 1.0)
+    with pytest.raises(TableFileError, match=r"x\.h5: the HDF5 library did not finish parsing the file within 1 s"):
+        probe.check_image(b"data", digest, "x.h5")
+    monkeypatch.setattr(probe, "_CHILD", "import sys; sys.stdout.write('refused x.h5: bad'); sys.exit(0)")
+    with pytest.raises(TableFileError, match=r"^x\.h5: bad$"):
+        probe.check_image(b"data", digest, "x.h5")
+    monkeypatch.setattr(probe, "_CHILD", "raise MemoryError('too big')")
+    with pytest.raises(TableFileError, match=r"x\.h5: the process checking the file failed \(exit 1\): MemoryError"):
+        probe.check_image(b"data", digest, "x.h5")
+    assert probe.CHECKED == set()   # nothing failed is remembered as checked
+    monkeypatch.setattr(probe, "_CHILD", "import sys; sys.stdout.write('ok')")
+    probe.check_image(b"data", digest, "x.h5")
+    assert probe.CHECKED == {digest}
+    monkeypatch.setattr(probe, "_CHILD", "import os, signal; os.kill(os.getpid(), signal.SIGSEGV)")
+    probe.check_image(b"data", digest, "x.h5")   # checked once per process
+
+
+def test_untrusted_file_is_checked_once_trusted_ones_never(tmp_path, monkeypatch, tiny):
+    """The shipped table (digest recorded in the package) and files this process wrote are parsed
+    in-process at once; another file is checked in a child process the first time only."""
+    from fastrest.tables import probe
+    from fastrest.tables._default_digest import SHA256
+    from fastrest.tables.file import read_verified
+
+    assert read_verified(tables.default_table_path())[1] == SHA256 and SHA256 in probe.TRUSTED
+    calls = []
+    real = probe.subprocess.run
+
+    def spy(*args, **kwargs):
+        calls.append(args)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(probe.subprocess, "run", spy)
+    monkeypatch.setattr(probe, "CHECKED", set())
+    tables.read(tables.default_table_path())
+    written = tmp_path / "w.h5"
+    tables.build(written, TINY_GRID, progress=False, measure=False)
+    tables.read(written)
+    assert calls == []
+    # tiny.h5 was written by this process too: a copy with another digest stands for a foreign file
+    other = tmp_path / "other.h5"
+    other.write_bytes(tiny.read_bytes())
+    import h5py
+    with h5py.File(other, "r+") as f:
+        f.attrs["history"] = "copied"
+    damaged_corpus.reseal(other)
+    for _ in range(2):
+        assert tables.read(other).grid == tables.normalise_grid(TINY_GRID)
+    assert len(calls) == 1
+
+
+def test_build_default_records_the_digest(tmp_path, monkeypatch):
+    """Building the shipped table's file writes its digest into the package (_default_digest.py)."""
+    from fastrest.tables import store
+    from fastrest.tables.file import read_verified
+
+    monkeypatch.setattr(store, "_HERE", tmp_path)
+    monkeypatch.setattr(store, "LOADED", {})
+    (tmp_path / "default.h5").write_bytes(b"")
+    tables.build(tmp_path / "default.h5", TINY_GRID, progress=False, measure=False)
+    text = (tmp_path / "_default_digest.py").read_text()
+    assert f"SHA256 = '{read_verified(tmp_path / 'default.h5')[1]}'" in text

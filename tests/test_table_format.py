@@ -176,10 +176,10 @@ def _points(n, seed):
     lim = np.array([fastrest.limits.v1_star_limit(a, b) for a, b in zip(e, nu)])
     v = np.exp(rng.uniform(np.log(0.05), np.log(lim * (1 - 1e-6))))
     t = fastrest.load_table()
-    edges = t.gen["edges"]
+    edges = t.cell_edges
     cells = np.concatenate([edges[:, 0], [1.0, 1.9 ** 1.25, 8.0]])
     # inside the blended first cells of the blocks b > 0, and just below each material's limit
-    first = [edges[b["cell0"]] for b in t.gen["blocks"][1:]]
+    first = [edges[c0] for c0, _ in t.block_cells[1:]]
     blend = np.concatenate([lo + (hi - lo) * rng.uniform(0, 1, 40) for lo, hi in first])
     extra = np.concatenate([cells, np.nextafter(cells, 0), np.nextafter(cells, 2 * cells), blend])
     k = rng.integers(0, n, extra.size)

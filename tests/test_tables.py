@@ -23,7 +23,9 @@ import numpy as np
 import pytest
 
 import fastrest
-from fastrest import TableFileError, _hdf5, direct, tables
+from fastrest import TableFileError, direct, tables
+from fastrest.tables import hdf5, schema, store
+from fastrest.tables.hdf5_read import read_table
 from damaged_corpus import reseal
 
 REPO = Path(__file__).resolve().parents[1]
@@ -282,8 +284,8 @@ def test_shipped_default_table_matches_generator(tmp_path):
     shipped = tables.default_table_path()
     regen = tmp_path / "regen.h5"
     tables.build(regen, None, progress=False)
-    a = _hdf5.read_table(shipped)
-    b = _hdf5.read_table(regen)
+    a = read_table(shipped)
+    b = read_table(regen)
     assert sorted(a.axes) == sorted(b.axes)
     assert sorted(a.datasets) == sorted(b.datasets)
     for group_a, group_b in ((a.axes, b.axes), (a.datasets, b.datasets)):
@@ -294,7 +296,7 @@ def test_shipped_default_table_matches_generator(tmp_path):
     assert a.dims == b.dims
     assert a.attrs == b.attrs
     assert a.attrs["grid"] == tables.normalise_grid(None)
-    assert a.attrs["format_version"] == _hdf5.FORMAT_VERSION
+    assert a.attrs["format_version"] == hdf5.FORMAT_VERSION
     assert shipped.read_bytes() == regen.read_bytes()
 
 
@@ -356,11 +358,15 @@ def test_build_read_round_trip(small):
             np.testing.assert_array_equal(x, y, err_msg=name)
         else:
             assert x == y and type(x) is type(y), name
+    # the file holds exactly the generated arrays
+    fresh, stored = tables.generate(SMALL_GRID, progress=False), schema.read_generated(path)[0]
+    for k in ("grid", "v_top", "base_fine", "base"):
+        assert getattr(fresh, k) == getattr(stored, k), k
     for k in ("eps_y", "nu", "edges", "nodes", "omega_star", "W_star", "v1_star_max"):
-        np.testing.assert_array_equal(built.gen[k], got.gen[k], err_msg=k)
-    for bb, bg in zip(built.gen["blocks"], got.gen["blocks"], strict=True):
-        for k in ("cell0", "cell1", "n", "c_eps_y", "values"):
-            np.testing.assert_array_equal(bb[k], bg[k], err_msg=k)
+        np.testing.assert_array_equal(getattr(fresh, k), getattr(stored, k), err_msg=k)
+    for bb, bg in zip(fresh.blocks, stored.blocks, strict=True):
+        for k in ("cell0", "cell1", "cstop", "n", "c_eps_y", "values"):
+            np.testing.assert_array_equal(getattr(bb, k), getattr(bg, k), err_msg=k)
     v = np.array([1.5, 3.0, 30.0, 300.0])
     np.testing.assert_array_equal(got.e_star(v, 0.005, 0.3), built.e_star(v, 0.005, 0.3))
 
@@ -463,7 +469,7 @@ def test_non_hdf5_file_rejected(tmp_path):
 def test_other_fastrest_format_table_rejected(tmp_path):
     """A valid fastrest-table file that is not a restitution table (no grid etc.)."""
     bad = tmp_path / "other.h5"
-    _hdf5.write_table(bad, {"x": (np.arange(3.0), "1", "x")}, {"y": (np.ones(3), ("x",), "1", "y")},
+    hdf5.write_table(bad, {"x": (np.arange(3.0), "1", "x")}, {"y": (np.ones(3), ("x",), "1", "y")},
                       {"title": "not restitution"})
     assert_rejected(bad)
 
@@ -472,7 +478,7 @@ def test_future_format_version_rejected(small, tmp_path):
     path, _ = small
     bad = copy_of(path, tmp_path, "future.h5")
     with h5py.File(bad, "r+") as f:
-        f.attrs["format_version"] = np.int64(_hdf5.FORMAT_VERSION + 1)
+        f.attrs["format_version"] = np.int64(hdf5.FORMAT_VERSION + 1)
     reseal(bad)
     msg = assert_rejected(bad)
     assert "version" in msg
@@ -563,7 +569,7 @@ def test_killed_build_leaves_old_file_loadable(small, tmp_path):
         for p in d.iterdir():
             p.unlink()
         shutil.copyfile(path, x)
-        before = _hdf5.read_table(x).attrs["checksum"]
+        before = read_table(x).attrs["checksum"]
         trigger = _build_and_kill(x, args)
         # whatever happened, X must be a complete, valid table (old or new, never half-written)
         t = tables.read(x)
@@ -571,7 +577,7 @@ def test_killed_build_leaves_old_file_loadable(small, tmp_path):
             break
     else:
         pytest.skip("every build finished before it could be killed while writing")
-    assert _hdf5.read_table(x).attrs["checksum"] == before    # still the old table
+    assert read_table(x).attrs["checksum"] == before    # still the old table
     assert t.grid == tables.normalise_grid(SMALL_GRID)
     stray = list(d.glob("*.tmp"))
     assert stray, "killed while writing, so the temporary file must still be there"
@@ -587,15 +593,15 @@ def test_killed_build_leaves_old_file_loadable(small, tmp_path):
 def cache(monkeypatch, tmp_path):
     d = tmp_path / "cache"
     monkeypatch.setenv("FASTREST_CACHE_DIR", str(d))
-    monkeypatch.setattr(tables, "_LOADED", dict(tables._LOADED))  # restore the registry after
+    monkeypatch.setattr(store, "LOADED", dict(store.LOADED))  # restore the registry after
     calls = []
-    real_build = tables.build
+    real_build = store.build
 
     def spy(*args, **kwargs):
         calls.append((args, kwargs))
         return real_build(*args, **kwargs)
 
-    monkeypatch.setattr(tables, "build", spy)
+    monkeypatch.setattr(store, "build", spy)
     return d, calls
 
 
@@ -606,7 +612,7 @@ def test_cached_table_builds_once(cache):
     assert len(calls) == 1
     expected = d / f"{tables.grid_key(TINY_GRID)}.h5"
     assert expected.exists()
-    assert expected.name.startswith(f"v{_hdf5.FORMAT_VERSION}-")
+    assert expected.name.startswith(f"v{hdf5.FORMAT_VERSION}-")
     assert [p.name for p in d.iterdir()] == [expected.name]
     assert t1.grid == tables.normalise_grid(TINY_GRID)
     assert Path(t1.path).resolve() == expected.resolve()
@@ -615,7 +621,7 @@ def test_cached_table_builds_once(cache):
     t2 = tables.cached_table(TINY_GRID, progress=False)
     assert t2 is t1
     # a new process (empty registry) reads the file, does not rebuild it
-    tables._LOADED.clear()
+    store.LOADED.clear()
     time.sleep(0.01)
     t3 = tables.cached_table(dict(TINY_GRID, n_eps_y=6.0), progress=False)   # same grid, other spelling
     assert t3 is not t1
@@ -666,7 +672,7 @@ def test_blocks_of_cells_agree_with_direct_solver(blocks):
     """Tables whose cell blocks carry different eps_y axes interpolate each block on its own axis:
     every block agrees with the direct solver (to the small grid's accuracy), across block edges."""
     t = tables.Table(tables.generate(dict(SMALL_GRID, eps_y_blocks=blocks), progress=False))
-    assert len(t.gen["blocks"]) == len(blocks) + 1 or not blocks
+    assert len(t.block_cells) == len(blocks) + 1 or not blocks
     rng = np.random.default_rng(SEED + 11)
     e = rng.uniform(0.0025, 0.0075, 400)
     n = rng.uniform(0.26, 0.39, 400)
@@ -683,3 +689,18 @@ def test_bad_eps_y_blocks_rejected():
                          ([[16.0, 3]], r"in \[6, 4096\]"), ("x", "pairs")):
         with pytest.raises((TypeError, ValueError), match=word):
             tables.normalise_grid(eps_y_blocks=blocks)
+
+
+def test_old_public_names_still_work():
+    """Names users may import from before fastrest.tables became a package."""
+    import fastrest.table_error as te
+
+    assert te.AccuracyWarning is tables.AccuracyWarning and te.measure is tables.error.measure
+    assert tables.table_value is tables.table_value_kernel
+    assert fastrest.TableFileError is tables.TableFileError
+    assert tables.TableData.__module__ == "fastrest.tables"
+    for name in ("Table", "load_table", "cached_table", "build", "generate", "read", "DEFAULT_GRID", "GRID_COUNTS",
+                 "QUANTITIES", "normalise_grid", "grid_key", "default_table_path", "omega_m_star", "e_star",
+                 "loss_star", "EPS_Y_AR_BINDS", "PARALLEL_MIN_POINTS", "cache_dir", "source_tree_table_path"):
+        assert name in tables.__all__, name
+    assert not [n for n in tables.__all__ if n.startswith("_")]

@@ -12,7 +12,7 @@ import pytest
 import fastrest
 from fastrest import direct, forward, rough, unloading
 from fastrest import jit as frj
-from fastrest.curve import closed_form
+from fastrest.cells import closed_form
 
 from reference import ref_e_star, ref_loss_star, ref_omega_m_star, ref_residual_star
 

@@ -22,7 +22,8 @@ import numpy as np
 from .._validation import real_scalar
 from ..direct import impact_array
 from ..limits import v1_star_limit
-from ..tables import QUANTITIES, _table_array, load_table
+from ..tables import QUANTITIES, load_table
+from ..tables.kernel import table_array
 from .. import unloading as _unloading
 from ._io import atomic_path, provenance
 from ._placement import JUMP, place_rows, scaled_error as _err
@@ -48,7 +49,7 @@ def _eval(table, v, e, n):
     v, e, n = (np.ascontiguousarray(a, dtype=np.float64).ravel() for a in np.broadcast_arrays(v, e, n))
     out = np.empty((table.data.n_quantities, v.size))
     for q in range(out.shape[0]):
-        _table_array(table.data, q, v, e, n, out[q])
+        table_array(table.data, q, v, e, n, out[q])
     return out
 
 

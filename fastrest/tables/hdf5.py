@@ -1,9 +1,9 @@
-"""Storage of precomputed tables in HDF5 files (no physics here).
+"""Storage of precomputed tables in HDF5 files: the layout, and the writer (no physics here).
 
 Layout of a table file (format ``fastrest-table``, version 3)::
 
     bytes 0-511           the HDF5 user block: a text header with the file's size and the
-                          SHA-256 digest of the bytes after it (see fastrest._tablefile)
+                          SHA-256 digest of the bytes after it (see fastrest.tables.file)
     /                     root attributes: format, format_version, fastrest_version,
                           checksum, checksum_algorithm, plus the caller's attributes
     /<axis>               1-D float64 dimension scale named after the axis;
@@ -21,42 +21,40 @@ arrays to the metadata HDF5 reports.
 
 Files are built in memory and written to a temporary file beside the target, which is renamed
 over it, so a reader sees either the old table or the new one, never a half-written file, and a
-full disk gives an OSError naming the file.
+full disk gives an OSError naming the file. The reader is :mod:`fastrest.tables.hdf5_read`.
 """
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 import hashlib
 import io
-import itertools
 import json
-import math
 import os
 import stat
 
 import h5py
 import numpy as np
 
-from ._tablefile import USERBLOCK, TableFileError, read_verified, write_atomic
-from ._version import __version__
+from .._version import __version__
+from .file import USERBLOCK, TableFileError, write_atomic
+from .probe import trust
 
-__all__ = ["FORMAT_NAME", "FORMAT_VERSION", "TableData", "TableFileError", "read_table",
-           "write_table"]
+__all__ = ["FORMAT_NAME", "FORMAT_VERSION", "CHECKSUM_ALGORITHM", "JSON_ATTRS_KEY", "FileContents",
+           "TableFileError", "checksum_arrays", "write_table", "write_variable"]
 
+#: The ``format`` root attribute of a table file.
 FORMAT_NAME = "fastrest-table"
-FORMAT_VERSION = 3  # 2: two-level V1* cells; 3: header with digest, Lobatto nodes, unloading models list
-#: Most objects at the root, and attributes per object, a table file may have.
-_MAX_OBJECTS = 1024
-_MAX_ATTRS = 64
-_IMAGE_IDS = itertools.count()
-_CHECKSUM_ALGORITHM = "sha256"
-# Root attribute listing the attributes that hold JSON-encoded dicts, so that a
-# caller's plain string that happens to look like JSON is never decoded by mistake.
-_JSON_ATTRS_KEY = "json_attributes"
+#: 2: two-level V1* cells; 3: header with digest, Lobatto nodes, unloading models list.
+FORMAT_VERSION = 3
+#: The ``checksum_algorithm`` root attribute.
+CHECKSUM_ALGORITHM = "sha256"
+#: Root attribute listing the attributes that hold JSON-encoded dicts, so that a caller's plain
+#: string that happens to look like JSON is never decoded by mistake.
+JSON_ATTRS_KEY = "json_attributes"
 _RESERVED_ATTRS = {"format", "format_version", "fastrest_version", "checksum",
-                   "checksum_algorithm", _JSON_ATTRS_KEY}
+                   "checksum_algorithm", JSON_ATTRS_KEY}
 
 
 @dataclass(frozen=True)
-class TableData:
+class FileContents:
     """Everything stored in a table file, read into memory.
 
     Attributes
@@ -78,6 +76,13 @@ class TableData:
         Descriptive name of every axis and dataset.
     digest : str
         SHA-256 hex digest of the file's bytes after its header (kept in the header).
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> from fastrest.tables.hdf5_read import read_table
+    >>> read_table(default_table_path()).dims["W_star"]
+    ('eps_y', 'nu', 'omega_star')
     """
 
     axes: dict
@@ -108,6 +113,12 @@ def write_table(path, axes, datasets, attrs):
         Root attributes: str, int, float, 1-D numeric arrays, or dicts (stored as JSON
         strings and decoded by `read_table`).
 
+    Returns
+    -------
+    str
+        The SHA-256 digest of the file's bytes after its header (trusted when this process reads
+        the file back, :mod:`fastrest.tables.probe`).
+
     Raises
     ------
     TypeError, ValueError
@@ -126,193 +137,47 @@ def write_table(path, axes, datasets, attrs):
 
     The same content always gives a byte-identical file: h5py writes no timestamps and
     everything is written in sorted name order.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> import numpy as np
+    >>> from fastrest.tables.hdf5_read import read_table
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = os.path.join(d, "t.h5")
+    ...     digest = write_table(p, {"x": (np.arange(3.0), "1", "x")}, {"y": (np.ones(3), ("x",), "1", "y")},
+    ...                          {"title": "t"})
+    ...     read_table(p).datasets["y"]
+    array([1., 1., 1.])
     """
     path = os.fspath(path)
     axes, datasets, attrs = _prepare(axes, datasets, attrs)
     arrays = {name: values for name, (values, _, _) in axes.items()}
     arrays.update({name: values for name, (values, _, _, _) in datasets.items()})
     attrs.update(format=FORMAT_NAME, format_version=FORMAT_VERSION,
-                 fastrest_version=__version__, checksum=_checksum(arrays),
-                 checksum_algorithm=_CHECKSUM_ALGORITHM)
+                 fastrest_version=__version__, checksum=checksum_arrays(arrays),
+                 checksum_algorithm=CHECKSUM_ALGORITHM)
 
     mode = _file_mode(path)
-    # The whole file is built in memory and written by _tablefile: HDF5 never sees a write error
+    # The whole file is built in memory and written by fastrest.tables.file: HDF5 never sees a write error
     # (h5py closing a file after a failed write, e.g. on a full disk, segfaulted).
     buffer = io.BytesIO()
     with h5py.File(buffer, "w", userblock_size=USERBLOCK) as f:
         scales = {}
         for name in sorted(axes):
             values, units, long_name = axes[name]
-            scales[name] = _write_variable(f, name, values, units, long_name)
+            scales[name] = write_variable(f, name, values, units, long_name)
             scales[name].make_scale(name)
         for name in sorted(datasets):
             values, dims, units, long_name = datasets[name]
-            dset = _write_variable(f, name, values, units, long_name)
+            dset = write_variable(f, name, values, units, long_name)
             for i, axis in enumerate(dims):
                 dset.dims[i].attach_scale(scales[axis])
         for key in sorted(attrs):
             f.attrs[key] = attrs[key]
-    write_atomic(path, buffer.getbuffer(), mode)
-
-
-def read_table(path):
-    """Read a table file written by `write_table` into memory.
-
-    The file is read with plain reads and verified (regular file, size, SHA-256 digest of its
-    bytes, see :mod:`fastrest._tablefile`) before HDF5 parses it from memory; then every object is
-    checked (datasets only, no links, no virtual or external storage, float64 or integer data
-    inside the file, bounded attributes) before any array is allocated.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The table file.
-
-    Returns
-    -------
-    TableData
-
-    Raises
-    ------
-    TableFileError
-        If the file does not exist, is not a regular file, is not a (complete) table file, fails
-        its digest or its checks, is not a fastrest table, or has a newer format version than this
-        fastrest reads. Nothing else: whatever a damaged or hostile file makes HDF5 or the checks
-        raise becomes a TableFileError naming the file.
-    """
-    path = os.fspath(path)
-    data, digest = read_verified(path)
-    try:
-        # HDF5 reads the verified bytes from memory: the file on disk may change meanwhile.
-        fapl = h5py.h5p.create(h5py.h5p.FILE_ACCESS)
-        fapl.set_fapl_core(backing_store=False)
-        fapl.set_file_image(data)
-        name = f"fastrest-table-image-{next(_IMAGE_IDS)}".encode()
-        with h5py.File(h5py.h5f.open(name, h5py.h5f.ACC_RDONLY, fapl=fapl)) as f:
-            table = _read_open_file(f, path, len(data))
-    except TableFileError:
-        raise
-    except Exception as exc:  # anything a hostile file provokes in HDF5, h5py or the checks
-        raise TableFileError(f"{path}: cannot be read as a table file (corrupted or not a fastrest "
-                             f"table): {type(exc).__name__}: {exc}") from exc
-
-    stored = table.attrs.get("checksum")
-    if not isinstance(stored, str):
-        raise TableFileError(f"{path}: no (string) checksum attribute; the file is incomplete or "
-                             "corrupted, rebuild the table")
-    algorithm = table.attrs.get("checksum_algorithm")
-    if algorithm != _CHECKSUM_ALGORITHM:
-        raise TableFileError(f"{path}: unknown checksum algorithm {algorithm!r}")
-    computed = _checksum({**table.axes, **table.datasets})
-    if computed != stored:
-        raise TableFileError(f"{path}: checksum mismatch (stored {stored}, computed "
-                             f"{computed}); the file is corrupted, rebuild the table")
-    return replace(table, digest=digest)
-
-
-def _read_open_file(f, path, limit):
-    """Check the format attributes and every object of an open file, then read its contents.
-
-    ``limit``: the file's size in bytes; nothing declaring more data than that is read.
-    """
-    attrs = {key: _plain(value) for key, value in _checked_attrs(f, path, limit, "the root group")}
-    if attrs.get("format") != FORMAT_NAME:
-        raise TableFileError(f"{path}: not a fastrest table (HDF5 file without the root "
-                             f"attribute format={FORMAT_NAME!r})")
-    version = attrs.get("format_version")
-    if not isinstance(version, int) or version < 1:
-        raise TableFileError(f"{path}: invalid table format_version {version!r}")
-    if version > FORMAT_VERSION:
-        raise TableFileError(
-            f"{path}: table has format version {version}, but this fastrest "
-            f"({__version__}) reads format version {FORMAT_VERSION} and older; upgrade "
-            "fastrest or rebuild the table with this version")
-
-    for key in json.loads(attrs.pop(_JSON_ATTRS_KEY, "[]")):
-        attrs[key] = json.loads(attrs[key])
-
-    names = list(f)
-    if len(names) > _MAX_OBJECTS:
-        raise TableFileError(f"{path}: {len(names)} objects, more than a table holds ({_MAX_OBJECTS})")
-    axes, datasets, units, long_names, dims = {}, {}, {}, {}, {}
-    for name in names:
-        obj = _checked_dataset(f, name, path, limit)
-        values = np.asarray(obj[()])
-        (axes if h5py.h5ds.is_scale(obj.id) else datasets)[name] = values
-        units[name] = _plain(obj.attrs.get("units", ""))
-        long_names[name] = _plain(obj.attrs.get("long_name", ""))
-
-    for name, values in datasets.items():
-        dims[name] = tuple(_dim_axis(f[name], i, axes, path) for i in range(values.ndim))
-        for i, axis in enumerate(dims[name]):
-            if axes[axis].shape != (values.shape[i],):
-                raise TableFileError(f"{path}: dimension {i} of dataset {name!r} has length "
-                                     f"{values.shape[i]} but axis {axis!r} has shape "
-                                     f"{axes[axis].shape}")
-    return TableData(axes=axes, datasets=datasets, attrs=attrs, units=units, path=path,
-                     dims=dims, long_names=long_names)
-
-
-def _checked_attrs(obj, path, limit, where):
-    """(name, value) of every attribute of ``obj``, each checked to declare at most ``limit``
-    bytes before it is read."""
-    names = list(obj.attrs)
-    if len(names) > _MAX_ATTRS:
-        raise TableFileError(f"{path}: {where} has {len(names)} attributes, more than a table "
-                             f"holds ({_MAX_ATTRS})")
-    out = []
-    for name in names:
-        aid = obj.attrs.get_id(name)
-        if math.prod(aid.shape or ()) * aid.dtype.itemsize > limit:
-            raise TableFileError(f"{path}: attribute {name!r} of {where} declares shape {aid.shape}, "
-                                 "more data than the file holds")
-        out.append((name, obj.attrs[name]))
-    return out
-
-
-def _checked_dataset(f, name, path, limit):
-    """The dataset ``name`` after checking that it is a plain array stored inside the file."""
-    link = f.get(name, getlink=True)
-    if not isinstance(link, h5py.HardLink):
-        kind = "an external link" if isinstance(link, h5py.ExternalLink) else "a soft link"
-        raise TableFileError(f"{path}: {name!r} is {kind}; a table file holds only datasets")
-    obj = f[name]
-    if not isinstance(obj, h5py.Dataset):
-        raise TableFileError(f"{path}: {name!r} is a {type(obj).__name__}; a table file holds "
-                             "only datasets")
-    dt = obj.dtype
-    if not (dt.kind in "iuf" and dt.names is None and dt.shape == () and dt.itemsize <= 8
-            and (dt.kind != "f" or dt.itemsize == 8) and h5py.check_enum_dtype(dt) is None):
-        raise TableFileError(f"{path}: dataset {name!r} has data type {dt}; a table file holds "
-                             "float64 and integer arrays only")
-    plist = obj.id.get_create_plist()
-    layout = plist.get_layout()
-    if layout == h5py.h5d.VIRTUAL:
-        raise TableFileError(f"{path}: dataset {name!r} is a virtual dataset (data from other "
-                             "files); refused")
-    if plist.get_external_count():
-        raise TableFileError(f"{path}: dataset {name!r} keeps its data in external files; refused")
-    if layout != h5py.h5d.CONTIGUOUS or plist.get_nfilters():
-        raise TableFileError(f"{path}: dataset {name!r} is not stored contiguously and "
-                             "uncompressed, as fastrest writes it")
-    nbytes = math.prod(obj.shape or ()) * dt.itemsize
-    offset, stored = obj.id.get_offset(), obj.id.get_storage_size()
-    if nbytes and (offset is None or stored != nbytes or not 0 <= offset <= limit - nbytes):
-        raise TableFileError(f"{path}: dataset {name!r} declares shape {obj.shape} ({nbytes} "
-                             f"bytes) but its data is not inside the file")
-    _checked_attrs(obj, path, limit, f"dataset {name!r}")
-    return obj
-
-
-def _dim_axis(dset, i, axes, path):
-    """Name of the axis attached to dimension ``i`` of ``dset``, checked to exist."""
-    scales = dset.dims[i].values()
-    # A deleted axis survives as an anonymous object (name None) while referenced.
-    names = [(scale.name or "").lstrip("/") for scale in scales]
-    if len(names) != 1 or names[0] not in axes:
-        raise TableFileError(f"{path}: dimension {i} of dataset {dset.name.lstrip('/')!r} "
-                             f"refers to a missing axis (attached: {names})")
-    return names[0]
+    digest = write_atomic(path, buffer.getbuffer(), mode)
+    trust(digest)  # bytes this process made: parsed in-process when read back
+    return digest
 
 
 def _prepare(axes, datasets, attrs):
@@ -364,7 +229,7 @@ def _prepare(axes, datasets, attrs):
         else:
             out_attrs[key] = _attr_value(key, value)
     if json_keys:
-        out_attrs[_JSON_ATTRS_KEY] = json.dumps(sorted(json_keys))
+        out_attrs[JSON_ATTRS_KEY] = json.dumps(sorted(json_keys))
     return out_axes, out_datasets, out_attrs
 
 
@@ -410,20 +275,29 @@ def _json_default(value):
     raise TypeError(f"cannot store {value!r} in a JSON attribute")
 
 
-def _plain(value):
-    """Turn an HDF5 attribute value into a plain Python value (arrays stay arrays)."""
-    if isinstance(value, bytes):
-        return value.decode("utf-8")
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
+def checksum_arrays(arrays):
+    """The ``checksum`` attribute: SHA-256 over the name, dtype, shape and bytes of every array.
 
+    Parameters
+    ----------
+    arrays : dict of str to array_like
+        Every axis and dataset of a file.
 
-def _checksum(arrays):
-    """SHA-256 hex digest over the name, dtype, shape and bytes of every array.
+    Returns
+    -------
+    str
+        Lowercase hex digest (docs/table-format.md, section 1.2).
 
-    Arrays are taken in sorted name order and in little-endian C order, so the digest does
-    not depend on the platform or on how the arrays are laid out in memory or in the file.
+    Notes
+    -----
+    Arrays are taken in sorted name order and in little-endian C order, so the digest does not
+    depend on the platform or on how the arrays are laid out in memory or in the file.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> len(checksum_arrays({"x": np.arange(3.0)}))
+    64
     """
     digest = hashlib.sha256()
     for name in sorted(arrays):
@@ -436,8 +310,31 @@ def _checksum(arrays):
     return digest.hexdigest()
 
 
-def _write_variable(f, name, values, units, long_name):
-    """Create one contiguous, uncompressed dataset at the root with its CF attributes."""
+def write_variable(f, name, values, units, long_name):
+    """Create one contiguous, uncompressed dataset at the root of an open file, with its CF attributes.
+
+    Parameters
+    ----------
+    f : h5py.File
+        The file being written.
+    name : str
+        Dataset name.
+    values : ndarray
+        Its data.
+    units, long_name : str
+        Its ``units`` and ``long_name`` attributes.
+
+    Returns
+    -------
+    h5py.Dataset
+
+    Examples
+    --------
+    >>> import io, h5py, numpy as np
+    >>> with h5py.File(io.BytesIO(), "w") as f:
+    ...     write_variable(f, "x", np.arange(3.0), "1", "x").attrs["units"]
+    '1'
+    """
     dset = f.create_dataset(name, data=values, track_times=False)
     dset.attrs["units"] = units
     dset.attrs["long_name"] = long_name

@@ -30,19 +30,48 @@ USERBLOCK = 512
 MAX_FILE_BYTES = 1 << 30
 _MAGIC = b"fastrest-table-file 1\n"
 _HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
-_CHUNK = 1 << 20
+#: Bytes per read and write call (tests make it small to provoke short writes).
+CHUNK_BYTES = 1 << 20
 
 
 class TableFileError(ValueError):
     """A table file is missing, truncated, corrupted, foreign, hostile, special (a FIFO, device or
     directory) or of another format version.
 
-    The message names the file and the problem.
+    A ValueError (``fastrest.TableFileError``); the message names the file and the problem. It is
+    the only exception reading a table file raises.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> try:
+    ...     fastrest.load_table("/nonexistent/t.h5")
+    ... except fastrest.TableFileError as exc:
+    ...     print(exc)
+    /nonexistent/t.h5: table file does not exist
     """
 
 
 def header(body_digest, size):
-    """The user block: the text header padded with zero bytes to :data:`USERBLOCK`."""
+    """The 512-byte user block of a table file (docs/table-format.md, section 1.0).
+
+    Parameters
+    ----------
+    body_digest : str
+        SHA-256 hex digest of the file's bytes after the user block.
+    size : int
+        The file's total length in bytes.
+
+    Returns
+    -------
+    bytes
+        The text header padded with zero bytes to :data:`USERBLOCK`.
+
+    Examples
+    --------
+    >>> header("0" * 64, 1000)[:26]
+    b'fastrest-table-file 1\\nsize'
+    """
     text = _MAGIC + f"size {size}\nsha256 {body_digest}\n".encode("ascii")
     return text + bytes(USERBLOCK - len(text))
 
@@ -86,6 +115,13 @@ def read_verified(path):
         opening it for blocking reads), larger than :data:`MAX_FILE_BYTES`, no fastrest header
         (a foreign file, or a table written by fastrest before format version 3), or a size or
         digest that does not match (truncated or corrupted).
+
+    Examples
+    --------
+    >>> from fastrest.tables import default_table_path
+    >>> data, digest = read_verified(default_table_path())
+    >>> data[512:516]
+    b'\\x89HDF'
     """
     try:
         _check_regular(os.stat(path), path)
@@ -101,7 +137,7 @@ def read_verified(path):
         _check_regular(st, path)
         parts, left = [], st.st_size
         while left > 0:
-            part = os.read(fd, min(left, _CHUNK))
+            part = os.read(fd, min(left, CHUNK_BYTES))
             if not part:
                 break
             parts.append(part)
@@ -167,9 +203,25 @@ def _check_existing(path):
 def check_target(path):
     """Refuse, before a long build, a target that cannot be written.
 
-    Raises OSError naming the path if ``path`` is an existing directory or special file (a table
-    never replaces a device or FIFO), or if no file can be created in its directory (missing,
-    read-only file system, no permission).
+    Parameters
+    ----------
+    path : str or path-like
+        The table file to be written.
+
+    Raises
+    ------
+    OSError
+        Naming the path, if it is an existing directory or special file (a table never replaces a
+        device or FIFO), or if no file can be created in its directory (missing, read-only file
+        system, no permission).
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     check_target(os.path.join(d, "t.h5"))   # writable: no error, nothing left behind
+    ...     os.listdir(d)
+    []
     """
     path = os.fspath(path)
     _check_existing(path)
@@ -184,13 +236,41 @@ def check_target(path):
 def write_atomic(path, image, mode):
     """Write a table file's bytes to a temporary file beside ``path``, fsync and rename over it.
 
-    ``image``: the whole file as a writable buffer whose first :data:`USERBLOCK` bytes (HDF5's user
-    block) are overwritten with the header. On any failure (disk full, I/O error) the temporary file
-    is removed, the old file is untouched, and an OSError naming ``path`` is raised.
+    Parameters
+    ----------
+    path : str or path-like
+        The target file.
+    image : writable buffer
+        The whole file; its first :data:`USERBLOCK` bytes (HDF5's user block) are overwritten with
+        the :func:`header`.
+    mode : int
+        Permission bits of the new file.
+
+    Returns
+    -------
+    str
+        The SHA-256 hex digest written into the header.
+
+    Raises
+    ------
+    OSError
+        Naming ``path``, on any failure (disk full, I/O error); the temporary file is removed and
+        the old file is untouched.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = os.path.join(d, "t.bin")
+    ...     digest = write_atomic(p, bytearray(USERBLOCK + 8), 0o644)
+    ...     data, digest = read_verified(p)
+    >>> len(data)
+    520
     """
     path = os.fspath(path)
     view = memoryview(image)
-    view[:USERBLOCK] = header(hashlib.sha256(view[USERBLOCK:]).hexdigest(), len(view))
+    digest = hashlib.sha256(view[USERBLOCK:]).hexdigest()
+    view[:USERBLOCK] = header(digest, len(view))
     _check_existing(path)
     try:
         fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)), suffix=".tmp")
@@ -200,13 +280,14 @@ def write_atomic(path, image, mode):
         try:
             pos = 0
             while pos < len(view):
-                pos += os.write(fd, view[pos:pos + _CHUNK])
+                pos += os.write(fd, view[pos:pos + CHUNK_BYTES])
             # Make the data durable before the rename makes it visible.
             os.fsync(fd)
         finally:
             os.close(fd)
         os.chmod(tmp, mode)
         os.replace(tmp, path)
+        return digest
     except BaseException as exc:
         try:
             os.remove(tmp)

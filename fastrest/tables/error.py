@@ -1,0 +1,399 @@
+"""The error of a table against the direct solver, on a sample built to find the worst, and tables
+built to a requested accuracy.
+
+A table's stated error is the worst over a sample that includes what random points miss: the
+corners and edges of its (eps_y, nu) rectangle, every V1* cell boundary and +/- 1 ulp around it,
+cell midpoints, both sides of the switch at V1* = 1.9^1.25, V1* -> 1, and the last cell before
+each material's w_m* = 425 speed (down to the limit itself), besides random materials and speeds.
+
+Metrics: w_m*, e and 1 - e^2 relative to the direct solver's value. A 1 - e^2 that changes sign
+in the table's domain (Etsion's and Brake's, where the model gives e > 1 just above the switch) has
+no relative error bound at its zero: its error is taken relative to max(|1 - e^2|, 0.1), i.e. a
+tolerance ``tol`` is ``tol / 10`` absolute where |1 - e^2| <= 0.1 (around the zero) and ``tol``
+relative above (the default table: 1e-10 absolute, 1e-9 relative).
+
+:func:`build_to_tolerance` refines the table's node counts until the measured error meets ``tol``:
+each block of V1* cells whose error is too large gets more nodes in C(nu) eps_y (the error of the
+6-point stencil falls like h^6); where that stopped helping, finer V1* cells (the fine region
+extended, if the worst point lies just above it), then more nodes in nu, then more cells per octave.
+"""
+import math
+import warnings
+
+import numpy as np
+
+from ..direct import impact_array
+from ..energy import V_SWITCH
+from ..limits import v1_star_limit
+from .generation import generate
+from .grid import QUANTITIES, normalise_grid
+from .kernel import interpolant_array
+from .table import Table
+
+__all__ = ["AccuracyWarning", "DEFAULT_TOL", "SAFETY", "SIGN_CHANGE_FLOOR", "adversarial_points", "sample_points",
+           "measure", "meets", "worst", "build_to_tolerance", "warn_if_inaccurate"]
+
+#: The accuracy the shipped table is built to (relative; sign-changing losses: see the module doc).
+DEFAULT_TOL = 1e-9
+#: A table is built until its measured error is within SAFETY x tol: the sample, however dense,
+#: can miss the worst point between its materials by ~25 % (a denser independent probe,
+#: bench/adversarial.py, found 1.36e-9 where this sample found 1.10e-9 on an earlier grid).
+SAFETY = 0.75
+#: A sign-changing 1 - e^2 is measured relative to max(|1 - e^2|, SIGN_CHANGE_FLOOR).
+SIGN_CHANGE_FLOOR = 0.1
+
+
+class AccuracyWarning(UserWarning):
+    """A table's measured error exceeds the accuracy asked for (or fastrest's default, 1e-9).
+
+    Issued by :func:`~fastrest.tables.load_table`, :func:`~fastrest.tables.build` and
+    :func:`~fastrest.tables.cached_table` (:func:`warn_if_inaccurate`); also
+    ``fastrest.table_error.AccuracyWarning`` (the same class).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as rec:
+    ...     warnings.simplefilter("always")
+    ...     warn_if_inaccurate({"e_jcg": {"max_rel_error": 1e-6, "max_error": 1e-6}}, 1e-9, "t")
+    >>> rec[0].category is AccuracyWarning
+    True
+    """
+
+
+def _materials(g, n_random, rng):
+    e0, e1, n0, n1 = g["eps_y_min"], g["eps_y_max"], g["nu_min"], g["nu_max"]
+    # the last ulp inside each edge too: a stencil at the very edge of the table
+    e_in, n_in = (np.nextafter(e0, e1), np.nextafter(e1, e0)), (np.nextafter(n0, n1), np.nextafter(n1, n0))
+    pts = [(e, n) for e in (e0, e1) + e_in for n in (n0, n1) + n_in]                 # corners
+    for t in np.linspace(0.0, 1.0, 27)[1:-1]:                                         # edges
+        t = float(t)
+        pts += [(e0, n0 + t * (n1 - n0)), (e1, n0 + t * (n1 - n0)),
+                (e0 * math.pow(e1 / e0, t), n0), (e0 * math.pow(e1 / e0, t), n1)]
+    pts += list(zip(rng.uniform(e0, e1, n_random), rng.uniform(n0, n1, n_random)))    # inside
+    return np.array(pts)
+
+
+def adversarial_points(table, n_random_materials=24, n_random_speeds=16, seed=2026):
+    """The sample a table's error is measured on: what random points miss, and random points.
+
+    Parameters
+    ----------
+    table : Table
+        The table (its grid and V1* cells).
+    n_random_materials, n_random_speeds : int
+        Random materials besides the corners and edges of the (eps_y, nu) rectangle; random speeds
+        per material (log-uniform up to its limit).
+    seed : int
+        Random seed (the sample is reproducible).
+
+    Returns
+    -------
+    v1_star, eps_y, nu : ndarray
+        Every material of the sample at every speed of the sample up to its own w_m* = 425 speed
+        (JGM section 3.3): cell boundaries and +/- 1 ulp, cell midpoints, both sides of the switch
+        at 1.9^1.25, V1* -> 1, and the last cell before the limit (see the module doc).
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> v, e, n = adversarial_points(fastrest.load_table())
+    >>> v.shape == e.shape == n.shape
+    True
+    """
+    rng = np.random.default_rng(seed)
+    g = table.grid
+    edges = table.cell_edges
+    inner = edges[1:, 0]
+    cell_pts = np.concatenate([np.nextafter(inner, 0), inner, np.nextafter(inner, np.inf),
+                               0.5 * (edges[:, 0] + edges[:, 1]),
+                               [V_SWITCH, np.nextafter(V_SWITCH, np.inf), V_SWITCH * (1 + 1e-12),
+                                np.nextafter(V_SWITCH, 0), 1.0 + 1e-12, 1.0 + 1e-9, 1.5]])
+    v, e, n = [], [], []
+    for eps, nu in _materials(g, n_random_materials, rng):
+        lim = v1_star_limit(eps, nu)
+        last = [lim, lim * (1 - 1e-12), lim * (1 - 1e-6), lim * (1 - 1e-3)]
+        # math, not NumPy's vectorised exp: its last bit depends on the CPU's instruction set, and
+        # the measured error (stored in the file) must not
+        rand = np.array([math.exp(x) for x in rng.uniform(0.0, math.log(lim), n_random_speeds)])
+        s = np.concatenate([cell_pts[cell_pts <= lim], last, rand])
+        v.append(s)
+        e.append(np.full(s.size, eps))
+        n.append(np.full(s.size, nu))
+    return np.concatenate(v), np.concatenate(e), np.concatenate(n)
+
+
+def sample_points(grid, n_points, seed):
+    """Test points over a table's domain: random plus hard cases (bench/table_details.py).
+
+    Parameters
+    ----------
+    grid : dict or None
+        Grid specification (:func:`~fastrest.tables.normalise_grid`).
+    n_points : int
+        Random materials (uniform in eps_y, nu), each at a V1* log-uniform up to its w_m* = 425 speed.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    v1_star, eps_y, nu : ndarray
+        The points, followed by hard speeds (1, 1 + 1e-12, around 1.9^1.25, ...) and the limit
+        speeds of the first materials.
+
+    Examples
+    --------
+    >>> v, e, n = sample_points(None, 10, 1)
+    >>> v.size
+    26
+    """
+    rng = np.random.default_rng(seed)
+    g = normalise_grid(grid)
+    e = rng.uniform(g["eps_y_min"], g["eps_y_max"], n_points)
+    n = rng.uniform(g["nu_min"], g["nu_max"], n_points)
+    vmax = np.array([v1_star_limit(a, b) for a, b in zip(e, n)])
+    # math.exp/log per point: NumPy's vectorised ones are not bit-reproducible across CPUs, and
+    # the measured error is written into the table file
+    v = np.array([math.exp(u * math.log(m)) for u, m in zip(rng.uniform(0.0, 1.0, n_points), vmax)])
+    hard = np.array([1.0, 1 + 1e-12, 1 + 1e-9, V_SWITCH * (1 - 1e-12), V_SWITCH * (1 + 1e-12),
+                     V_SWITCH * (1 + 1e-6), 3.0, 60.0])
+    k = len(hard)
+    v = np.concatenate([v, hard, vmax[:k]])
+    e = np.concatenate([e, e[:k], e[:k]])
+    n = np.concatenate([n, n[:k], n[:k]])
+    return v, e, n
+
+
+def measure(table, points=None):
+    """Worst error of every quantity of a table against the direct solver.
+
+    Parameters
+    ----------
+    table : Table
+    points : (ndarray, ndarray, ndarray), optional
+        (v1_star, eps_y, nu); default :func:`adversarial_points`.
+
+    Returns
+    -------
+    dict
+        Quantity name -> {metric ("relative", or "relative to max(|x|, 0.1)" for a sign-changing
+        loss), max_error, max_rel_error (the same number, kept for older readers), max_abs_error,
+        at_v1_star, at_eps_y, at_nu, by_block (worst per block of V1* cells)}. The interpolant is
+        evaluated without the w_m* <= 425 check (:func:`~fastrest.tables.kernel.interpolant_array`).
+
+    Notes
+    -----
+    Reference: :func:`fastrest.direct.impact_array` (JGM eqs 29, 38 by quadrature and Newton).
+
+    Examples
+    --------
+    >>> import numpy as np, fastrest
+    >>> pts = (np.array([5.0, 300.0]), np.array([0.005, 0.009]), np.array([0.33, 0.4]))
+    >>> measure(fastrest.load_table(), pts)["omega_m_star"]["max_error"] < 1e-9
+    True
+    """
+    v, e, n = adversarial_points(table) if points is None else points
+    nq = table.data.n_quantities
+    ref = np.empty((nq, v.size))
+    for m in range((nq - 1) // 2):
+        sol = np.empty((5, v.size))
+        impact_array(v, e, n, m, False, sol)
+        ref[0], ref[1 + 2 * m], ref[2 + 2 * m] = sol[0], sol[1], sol[2]
+    edges = table.cell_edges
+    cell = np.searchsorted(edges[:, 1], v, side="left")
+    block = np.full(v.size, -1)
+    above = v > V_SWITCH
+    for k, (c0, c1) in enumerate(table.block_cells):
+        block[above & (cell >= c0) & (cell < c1)] = k
+    out = {}
+    for q, name in enumerate(QUANTITIES[:nq]):
+        got = np.empty(v.size)
+        interpolant_array(table.data, q, v, e, n, got)
+        floored = name.startswith("loss_") and bool(np.any(ref[q] < 0))
+        diff = np.abs(got - ref[q])
+        den = np.maximum(np.abs(ref[q]), SIGN_CHANGE_FLOOR if floored else 0.0)
+        err = np.where(den > 0, diff / np.where(den > 0, den, 1.0), diff)
+        err = np.where(np.isfinite(err), err, np.inf)
+        k = int(np.argmax(err))
+        by_block = [float(err[block == b].max()) if np.any(block == b) else 0.0
+                    for b in range(len(table.block_cells))]
+        out[name] = {"metric": f"relative to max(|x|, {SIGN_CHANGE_FLOOR:g})" if floored else "relative",
+                     "max_error": float(err[k]), "max_rel_error": float(err[k]),
+                     "max_abs_error": float(np.max(np.where(np.isfinite(diff), diff, np.inf))),
+                     "at_v1_star": float(v[k]), "at_eps_y": float(e[k]), "at_nu": float(n[k]),
+                     "by_block": by_block}
+    return out
+
+
+def meets(errors, tol):
+    """Whether every quantity's measured error is within ``tol`` (in its metric).
+
+    Parameters
+    ----------
+    errors : dict
+        As :func:`measure` returns.
+    tol : float
+        The tolerance.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> meets({"e_jcg": {"max_error": 2e-10}}, 1e-9)
+    True
+    """
+    return all(d["max_error"] <= tol for d in errors.values())
+
+
+def worst(errors, tol):
+    """The quantity with the largest measured error.
+
+    Parameters
+    ----------
+    errors : dict
+        As :func:`measure` returns.
+    tol : float
+        Returned as is (for messages).
+
+    Returns
+    -------
+    (str, float, float)
+        (name, its error, tol).
+
+    Examples
+    --------
+    >>> worst({"a": {"max_error": 1e-9}, "b": {"max_error": 3e-9}}, 1e-9)
+    ('b', 3e-09, 1e-09)
+    """
+    name = max(errors, key=lambda k: errors[k]["max_error"])
+    return name, errors[name]["max_error"], tol
+
+
+def build_to_tolerance(grid, tol, max_rounds=5, progress=False, log=None):
+    """Generate a table, refining its node counts until its measured error meets a tolerance.
+
+    Parameters
+    ----------
+    grid : dict or None
+        The starting grid (:func:`~fastrest.tables.normalise_grid`).
+    tol : float
+        Relative error asked (sign-changing losses: see the module doc); met within
+        :data:`SAFETY` x tol on :func:`adversarial_points`.
+    max_rounds : int
+        Refinements tried.
+    progress : None or bool
+        Progress bar while generating (:func:`~fastrest.tables.generate`).
+    log : callable, optional
+        Called with one line per round.
+
+    Returns
+    -------
+    gen, table, errors, grid : GeneratedTable, Table, dict, dict
+        The arrays, the table, its errors (as :func:`measure`) and the grid reached.
+
+    Raises
+    ------
+    ValueError
+        ``max_rounds`` refinements do not reach ``tol``: the message names the error reached, where,
+        and what to change.
+
+    Examples
+    --------
+    >>> gen, t, errors, g = build_to_tolerance(dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3,
+    ...     nu_max=0.35, n_nu=6, bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6), 1e-5)
+    >>> meets(errors, 1e-5)
+    True
+    """
+    g = normalise_grid(grid)
+    target = tol * SAFETY
+    prev = None
+    for rnd in range(max_rounds + 1):
+        gen = generate(g, progress=progress)
+        table = Table(gen)
+        errors = measure(table)
+        if log is not None:
+            name, err, lim = worst(errors, target)
+            log(f"round {rnd}: worst {name} {err:.2e} (limit {lim:.1e}); eps_y blocks "
+                f"{g['eps_y_blocks']}, top {g['n_eps_y']}, nu {g['n_nu']}")
+        if meets(errors, target):
+            return gen, table, errors, g
+        if rnd == max_rounds:
+            break
+        # per block: the worst ratio of error to limit over every quantity
+        nb = len(gen.blocks)
+        ratio = [max(d["by_block"][b] / target for d in errors.values()) for b in range(nb)]
+        outside = max(d["max_error"] / target for d in errors.values())
+        if max(ratio) <= 1.0 < outside:
+            break  # the excess is below the switch or in the material edges: node counts cannot help
+        refine_other = False
+        for b, r in enumerate(ratio):
+            if r <= 1.0:
+                continue
+            if prev is not None and r > 0.5 * prev[b]:
+                refine_other = True  # more material nodes stopped helping: cells or nu
+                continue
+            factor = min(1.6, max(1.15, 1.1 * r ** (1.0 / 6.0)))
+            blocks = [list(x) for x in g["eps_y_blocks"]]
+            if b < len(blocks):
+                blocks[b][1] = int(math.ceil(blocks[b][1] * factor))
+                g = normalise_grid(g, eps_y_blocks=blocks)
+            else:
+                g = normalise_grid(g, n_eps_y=int(math.ceil(g["n_eps_y"] * factor)))
+        if refine_other:
+            v_worst = errors[worst(errors, target)[0]]["at_v1_star"]
+            fine = g["fine_v1_star_max"]
+            if fine <= v_worst < 4.0 * fine and fine < 2.0**20:
+                g = normalise_grid(g, fine_v1_star_max=2.0 * fine)   # finer V1* cells there
+            elif g["n_nu"] < 12:
+                g = normalise_grid(g, n_nu=g["n_nu"] + 2)
+            else:
+                g = normalise_grid(g, bits_per_octave=min(10, g["bits_per_octave"] + 1))
+            ratio = None
+        prev = ratio
+    name, err, lim = worst(errors, target)
+    d = errors[name]
+    raise ValueError(
+        f"could not build a table within tol = {tol:g} in {max_rounds} refinements: {name} has "
+        f"{d['metric']} error {err:.3g} (limit {lim:.3g} = {SAFETY:g} tol) at V1* = {d['at_v1_star']:.6g}, eps_y = "
+        f"{d['at_eps_y']:.6g}, nu = {d['at_nu']:.6g} with eps_y blocks {g['eps_y_blocks']}, n_eps_y "
+        f"{g['n_eps_y']}, n_nu {g['n_nu']}. Ask for a larger tol, a narrower eps_y/nu range, or more "
+        "cells per octave (bits_per_octave)")
+
+
+def warn_if_inaccurate(errors, tol, where):
+    """Warn if a table's stored measured error exceeds a tolerance.
+
+    Parameters
+    ----------
+    errors : dict or None
+        The ``measured_error`` attribute (as :func:`measure`); None or empty: unknown accuracy.
+    tol : float or None
+        The tolerance; None: :data:`DEFAULT_TOL`.
+    where : str
+        Names the table in the message.
+
+    Warns
+    -----
+    AccuracyWarning
+        The error exceeds ``tol``, or is not recorded.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> warn_if_inaccurate(fastrest.load_table().attrs["measured_error"], 1e-9, "default")  # no warning
+    """
+    tol = DEFAULT_TOL if tol is None else tol
+    if not errors:
+        warnings.warn(f"{where}: the table records no measured error; its accuracy is unknown",
+                      AccuracyWarning, stacklevel=3)
+        return
+    errors = {k: dict(d, metric=d.get("metric", "relative"), max_error=d.get("max_error", d["max_rel_error"]))
+              for k, d in errors.items()}
+    if not meets(errors, tol):
+        name, err, lim = worst(errors, tol)
+        warnings.warn(f"{where}: measured {errors[name]['metric']} error of {name} is {err:.3g}, above "
+                      f"{lim:.3g} (tol = {tol:g}); rebuild with `fastrest build --tol {tol:g}` or "
+                      "tables.cached_table(grid, tol=...)", AccuracyWarning, stacklevel=3)
+
