@@ -92,6 +92,10 @@ def _targets():
     add("Impact.V_max", dict(extrapolate=False), lambda **k: imp.V_max(**k))
     add("Impact.residual", dict(V1=1.0), lambda **k: imp.residual(**k))
     add("Impact.rebound_velocity", dict(V1=1.0), lambda **k: imp.rebound_velocity(**k))
+    add("Impact.max_interference", dict(V1=1.0, extrapolate=False), lambda **k: imp.max_interference(**k))
+    add("Impact.v1_star", dict(V1=1.0, extrapolate=False), lambda **k: imp.v1_star(**k))
+    add("direct.v1_star_limit", dict(eps_y=0.005, nu=0.33, extrapolate=False),
+        lambda **k: direct.v1_star_limit(**k))
     add("poisson_factor", dict(nu=0.3), lambda **k: fastrest.poisson_factor(**k))
     add("critical_velocity_ratios", dict(nu=0.3), lambda **k: fastrest.critical_velocity_ratios(**k))
     add("P_star", dict(w=2.0, eps_y=0.005, nu=0.3), lambda **k: fastrest.P_star(**k))
@@ -104,6 +108,8 @@ def _targets():
     for f in ("omega_m_star", "e_star", "loss_star"):
         add(f"fastrest.{f}", dict(v3), lambda f=f, **k: getattr(fastrest, f)(**k))
         add(f"Table.{f}", dict(v3), lambda f=f, **k: getattr(tab, f)(**k))
+    for f in ("W_star", "loading_energy"):
+        add(f"Table.{f}", dict(w=2.0, eps_y=0.005, nu=0.33), lambda f=f, **k: getattr(tab, f)(**k))
     add("curve", dict(eps_y=0.005, nu=0.33, v_max=20.0, extrapolate=False), lambda **k: fastrest.curve(**k))
     for f in ("e", "loss", "omega_m"):
         add(f"Curve.{f}", dict(v1_star=5.0), lambda f=f, **k: getattr(c, f)(**k))

@@ -20,6 +20,10 @@ import math
 from .._jit import jit
 from . import elastic
 
+#: The unit's interface, read by the registry (fastrest/unloading/__init__.py).
+__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "residual",
+           "restitution"]
+
 NAME = "brake"
 SHORT = "Brake"
 LABEL = "Brake (2015) as in tmdsimpy: eq (32) with the Hertz radius at maximum load"

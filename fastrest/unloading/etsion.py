@@ -11,6 +11,10 @@ from .._jit import jit
 from ..contact import a_star_kernel
 from . import elastic
 
+#: The unit's interface, read by the registry (fastrest/unloading/__init__.py).
+__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "residual",
+           "restitution"]
+
 NAME = "etsion"
 SHORT = "Etsion"
 LABEL = "Etsion et al., JGM eqs (33)-(34)"

@@ -13,6 +13,10 @@ from .._jit import jit
 from ..contact import W_SWITCH
 from . import elastic
 
+#: The unit's interface, read by the registry (fastrest/unloading/__init__.py).
+__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "residual",
+           "restitution", "residual_ratio"]
+
 NAME = "jcg"
 SHORT = "JCG"
 LABEL = "Jackson-Chusoipin-Green fit, JGM eq (35)"
