@@ -5,7 +5,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..interpolation import MANTISSA_BITS, values_to_coeffs
-from ._shared import hertz_rows
+from ..cells import hertz_rows
 from .axes import xi_range
 
 __all__ = ["TableData", "table_data"]

@@ -20,7 +20,7 @@ from ..energy import F_SWITCH, jg_integral, omega_m_sorted_kernel
 from ..interpolation import DEGREE, share_edges
 from ..limits import v1_star_limit
 from ..unloading import N_MODELS, restitution_kernel
-from ._shared import jg_nodes
+from ..cells import jg_nodes
 from .axes import cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis, v1_star_top
 from .grid import QUANTITIES, c_eps_y, normalise_grid
 

@@ -21,7 +21,7 @@ from ..contact import omega_star_limit_kernel
 from ..critical import c_of_nu
 from ..energy import V_SWITCH
 from ..interpolation import cell_index, cell_polynomial, fma, two_level_index
-from ._shared import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
+from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
 from .grid import STENCIL_EPS, STENCIL_NU
 
 __all__ = ["OMEGA_LIMIT_TOL", "OMEGA_LIMIT", "EPS_Y_AR_BINDS", "table_value_kernel", "table_value", "table_array",

@@ -10,7 +10,7 @@ from ..contact import W_SWITCH, omega_star_limit_kernel
 from ..energy import GL_ORDER, PANEL_WIDTH, V_SWITCH
 from ..interpolation import CHEB_U, DEGREE
 from ..limits import v1_star_limit
-from ._shared import jg_nodes
+from ..cells import jg_nodes
 from .generation import GeneratedTable
 from .axes import Block, cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis
 from .grid import OMEGA_GRID_HERTZ, OMEGA_GRID_JG, QUANTITIES, QUANTITY_META, normalise_grid

@@ -8,7 +8,7 @@ from .._threads import run_parallel
 from .._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, broadcast_inputs, check_eps_y,
                            check_nu, check_velocity, shaped, warn_if_outside_validated)
 from ..limits import raise_out_of_range, v1_star_limit
-from ._shared import fast_scalar
+from ..fastpath import fast_scalar
 from .data import table_data
 from .kernel import table_array, table_array_parallel, table_value_kernel
 from .w_star import energy_data, loading_energy_array, W_STAR_OMEGA_MAX
