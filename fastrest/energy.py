@@ -63,8 +63,8 @@ def f_star_kernel(w, eps_y, nu):
 
 
 @jit
-def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
-    """Solve ln F(w_m) = target (> ln F(1.9)) by Newton's method in t = ln w, from (w, f = F(w)).
+def newton_from_below(vv, w, f, hi, eps_y, nu, C, B):
+    """Solve F(w_m) = vv = V1*^2 (> F(1.9)) by Newton's method on ln F in t = ln w, from (w, f = F(w)).
 
     Start near the root (callers start from the Hertz solution V1*^0.8, which lies below it where
     P*_JG < Hertz, i.e. for nu above about 0.32, or from the previous root when marching). Where
@@ -76,7 +76,10 @@ def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
     """
     t = math.log(w)
     for _ in range(60):
-        g = math.log(f) - target
+        # ln(F/V1*^2) and w e^dt, not ln F - 2 ln V1* and e^(t + dt): those carry the rounding of
+        # ln w and ln V1* (~ulp(10) at w ~ 1e4), ~10 ulp of w_m*, which matters where e depends
+        # steeply on w_m* (the end of JCG's eq 35)
+        g = math.log(f / vv)
         dt = -g * f / (2.5 * w * p_star_jg(w, eps_y, nu, C, B))
         t_new = t + dt
         if t_new > hi:
@@ -85,7 +88,9 @@ def newton_from_below(target, w, f, hi, eps_y, nu, C, B):
                 # the limit itself, whose F was summed along another path)
                 return (w if g > -1e-14 else np.nan), w, f
             t_new = hi
-        w_new = math.exp(t_new)
+            w_new = math.exp(hi)
+        else:
+            w_new = w * math.exp(dt)
         if abs(dt) < 1e-9:
             return w_new, w, f  # quadratic convergence: the error of w_new is ~dt^2
         f += 2.5 * jg_integral(w, w_new, eps_y, nu, C, B)
@@ -115,7 +120,7 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
         return np.nan
     w = math.exp(t)
     f = F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, C, B)
-    return newton_from_below(2.0 * math.log(v), w, f, hi, eps_y, nu, C, B)[0]
+    return newton_from_below(v * v, w, f, hi, eps_y, nu, C, B)[0]
 
 
 @jit
@@ -133,7 +138,7 @@ def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
         if not v[i] > V_SWITCH:
             out[i] = np.nan
             continue
-        out[i], w, f = newton_from_below(2.0 * math.log(v[i]), w, f, hi, eps_y, nu, C, B)
+        out[i], w, f = newton_from_below(v[i] * v[i], w, f, hi, eps_y, nu, C, B)
 
 
 @jit
