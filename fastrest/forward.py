@@ -60,7 +60,7 @@ from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
 
 __all__ = ["ForwardData", "forward_data", "forward_limit", "F_forward", "P_forward",
            "P_table_forward", "FP_table_forward", "returned_forward", "loss_forward",
-           "forward_values", "JCG", "ETSION", "BRAKE"]
+           "forward_values", "forward_values_excess", "JCG", "ETSION", "BRAKE"]
 
 #: Cells per octave of w (2^K). K = 5: max relative error ~5e-15 on F (K = 4: ~5e-13), measured
 #: against energy.f_star_kernel over 0.0005 <= eps_y <= 0.01 (tests/test_rough.py asserts <= 1e-12).
@@ -319,7 +319,43 @@ def forward_values(data, w):
     >>> round((R / F) ** 0.5, 6)  # e, as fastrest.direct.e_star(10.0, 0.005, 0.33)
     0.828733
     """
-    if not (w >= 0.0 and w <= data.w_max and data.model >= 0 and data.model < N_MODELS):
+    return forward_values_excess(data, w, w - 1.0)
+
+
+@jit(inline=True)
+def forward_values_excess(data, w, w1):
+    """:func:`forward_values` with w1 = w - 1 given (documented internal).
+
+    Parameters
+    ----------
+    data : ForwardData
+        The material's forward map, :func:`forward_data`.
+    w : float
+        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    w1 : float
+        w - 1 (-), computed by the caller without cancellation (near the onset of yield L is
+        proportional to it: the rough-surface solvers carry it beside w).
+
+    Returns
+    -------
+    (float, float, float, float)
+        F, P*, R, L as :func:`forward_values` (NaN likewise); L = 0 for w1 <= 0.
+
+    Notes
+    -----
+    JGM eq (38) with the unloading model's w_res*, as :func:`forward_values`.
+
+    Examples
+    --------
+    >>> from fastrest import forward
+    >>> d = forward.forward_data(0.005, 0.3, 10.0)
+    >>> F, P, R, L = forward.forward_values_excess(d, 1.0 + 1e-12, 1e-12)
+    >>> bool(abs(L / 1e-12 - 1.02 * 0.54 / 6.9) < 1e-9)
+    True
+    """
+    # fields read up front: a field read inside a rarely taken branch slows the caller's loop
+    model, eps_y, nu, w_max = data.model, data.eps_y, data.nu, data.w_max
+    if not (w >= 0.0 and w <= w_max and model >= 0 and model < N_MODELS):
         return np.nan, np.nan, np.nan, np.nan
     if w <= W_SWITCH:
         p = w * math.sqrt(w)
@@ -327,10 +363,10 @@ def forward_values(data, w):
     else:
         f = cell_polynomial(data.f_rows, cell_index(w, data.shift, data.base), w)
         p = _p_jg(data, w)
-    if w <= 1.0:
+    if w1 <= 0.0:
         return f, p, f, 0.0  # elastic
     # the unloading model's energy split of an impact whose loading energy is f
-    e2, loss, _, _, _ = restitution(data.model, f, w, w - 1.0, p, data.eps_y, data.nu)
+    e2, loss, _, _, _ = restitution(model, f, w, w1, p, eps_y, nu)
     return f, p, e2 * f, loss * f
 
 

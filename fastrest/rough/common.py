@@ -6,7 +6,7 @@ its force P*(w) (eqs 9, 14). Near the onset of yield (w -> 1) the dissipated ene
 proportional to w - 1, so the solvers pass w - 1 computed without cancellation (``d``) beside w:
 while the tallest summit is near the onset, summits enter the energy balance as F - 1
 (:func:`hertz_terms`), and
-:func:`summit_values` is :func:`fastrest.forward.forward_values` with ``d`` given.
+:func:`summit_values` is :func:`fastrest.forward.forward_values_excess` (w - 1 given).
 
 The impact energy over U_c, E = M V1^2 / (2 U_c) = (V1/V_c)^2, is carried as an unevaluated sum
 ``e_hi + e_lo`` (:func:`_energy_low_array`), so that E - n (n summits counted from their onset) keeps
@@ -19,7 +19,6 @@ import numpy as np
 from .. import forward as fw
 from .._jit import jit
 from ..contact import W_SWITCH
-from ..unloading import restitution
 
 __all__ = ["OK", "NEEDS_TABLE", "FAILED", "MAX_ITER", "ONSET_BAND", "hertz_fp", "hertz_terms", "jg_terms",
            "summit_values", "energy_excess", "energy_parts"]
@@ -131,49 +130,8 @@ def jg_terms(data, w, d, onset):
     return hertz_terms(w, d, onset)
 
 
-@jit(inline=True)
-def summit_values(data, w, d):
-    """Loading energy, force, returned and dissipated energy of one summit.
-
-    :func:`fastrest.forward.forward_values` with w* - 1 given.
-
-    Parameters
-    ----------
-    data : fastrest.forward.ForwardData
-        Forward table of one summit (and its unloading model).
-    w : float
-        Interference w* (-), 0 <= w <= data.w_max.
-    d : float
-        w* - 1 (-), computed without cancellation by the caller.
-
-    Returns
-    -------
-    (float, float, float, float)
-        F, P*, R, L (energies over U_c, force over P_c, -): R = P*(w)(w - w_res*(w)) (JGM eq 38
-        with the unloading model's w_res*, eq 35 or 33), L = F - R without cancellation, 0 for
-        d <= 0. NaN past data.w_max.
-
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> from fastrest.rough import common
-    >>> data = forward.forward_data(0.005, 0.3, 10.0)
-    >>> f, p, r, loss = common.summit_values(data, 1.0 + 1e-12, 1e-12)
-    >>> bool(abs(loss / 1e-12 - 1.02 * 0.54 / 6.9) < 1e-9)
-    True
-    """
-    # fields read up front: one read inside a rare branch slows the caller's loop
-    model, eps_y, nu = data.model, data.eps_y, data.nu
-    if w <= W_SWITCH:
-        p = w * math.sqrt(w)
-        f = w * p
-    else:
-        f = fw.F_forward(data, w)
-        p = fw.P_forward(data, w)
-    if d <= 0.0:
-        return f, p, f, 0.0  # elastic
-    e2, loss, _, _, _ = restitution(model, f, w, d, p, eps_y, nu)
-    return f, p, e2 * f, loss * f
+#: One summit's (F, P*, R, L) from (data, w, w - 1): :func:`fastrest.forward.forward_values_excess`.
+summit_values = fw.forward_values_excess
 
 
 @jit(inline=True)
