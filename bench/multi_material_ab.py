@@ -16,7 +16,8 @@ Point sets (V1* log-uniform, points shuffled, points either version's table refu
 * ``bench``: the points of ``bench.modes.multi_material`` (16 materials, 1e6 points).
 
 Only public names present in both versions are used (``fastrest.e_star``, ``fastrest.jit.e_table``,
-``fastrest.models.jgm_fit_jcg_array``, called ``jgm_fit_jcg_kernel`` before issue 15).
+``fastrest.models.jgm_fit_jcg_scalar``, ``fastrest.models.jgm_fit_jcg_array``, called
+``jgm_fit_jcg_kernel`` before issue 15).
 Writes bench/MULTI_MATERIAL_AB.md.
 """
 import argparse
@@ -41,32 +42,62 @@ NEW_DEFAULT = str(REPO / ".venv" / "bin" / "python")
 
 # runs in the version's own interpreter, cwd outside any source tree (so it imports that version)
 WORKER = r'''
-import json, sys, time, warnings
+import json, sys, time, timeit
 import numpy as np, numba
 import fastrest, fastrest.models as m
 from fastrest import jit as frj
 mode, path = sys.argv[1], sys.argv[2]
 d = np.load(path)
 fit = getattr(m, "jgm_fit_jcg_array", None) or m.jgm_fit_jcg_kernel
+fit1 = m.jgm_fit_jcg_scalar
 
 @numba.njit
-def finite(tab, v, e, nu, out):
+def jit_loop(tab, v, e, nu, out):
     for i in range(v.size):
         out[i] = frj.e_table(tab, v[i], e[i], nu[i], frj.JCG)
 
+@numba.njit
+def jit_chain(tab, v, e, nu):
+    x = 0.0
+    for i in range(v.size):
+        x = frj.e_table(tab, v[i] - 1e-9 * x, e[i], nu[i], frj.JCG)
+    return x
+
+@numba.njit
+def fit_chain(v, e):
+    x = 0.0
+    for i in range(v.size):
+        x = fit1(v[i] - 1e-9 * x, e[i])
+    return x
+
+tab = fastrest.load_table().data
 if mode == "mask":
-    res = {}
-    tab = fastrest.load_table().data
     for s in ("random", "bench"):
         v, e, nu = d[s + "_v"], d[s + "_e"], d[s + "_nu"]
         o = np.empty(v.size)
-        finite(tab, v, e, nu, o)
+        jit_loop(tab, v, e, nu, o)
         np.save(path[:-4] + "_" + s + "_keep.npy", np.isfinite(o))
     print(json.dumps({"file": fastrest.__file__}))
     sys.exit()
 inner = int(sys.argv[3])
-out = {"file": fastrest.__file__, "threads": numba.config.NUMBA_NUM_THREADS}
 nmax = numba.config.NUMBA_NUM_THREADS
+out = {"file": fastrest.__file__, "threads": nmax}
+
+def run(cases, n, refs):
+    for f in cases.values():  # warm-up (and compilation)
+        f(); f()
+    t = {k: [] for k in cases}
+    order = np.random.default_rng(7)
+    for r in range(inner):
+        for k in order.permutation(list(cases)):
+            t0 = time.perf_counter()
+            cases[k]()
+            t[k].append((time.perf_counter() - t0) / n)
+    res = {k: float(np.median(x)) * 1e9 for k, x in t.items()}
+    for k, ref in refs.items():
+        res[k + "_ratio"] = float(np.median(np.array(t[k]) / np.array(t[ref])))
+    return res
+
 for s in ("random", "bench"):
     keep = d[s + "_keep"]
     v, e, nu = (np.ascontiguousarray(d[s + k][keep]) for k in ("_v", "_e", "_nu"))
@@ -77,25 +108,28 @@ for s in ("random", "bench"):
             return fastrest.e_star(v, e, nu)
         finally:
             numba.set_num_threads(nmax)
-    cases = {"e_star": lambda: fastrest.e_star(v, e, nu), "e_star_1thread": one, "fit": lambda: fit(v, e, o)}
-    ref = fastrest.e_star(v, e, nu)
-    for f in cases.values():  # warm-up
-        f(); f()
-    t = {k: [] for k in cases}
-    order = np.random.default_rng(7)
-    for r in range(inner):
-        for k in order.permutation(list(cases)):
-            t0 = time.perf_counter()
-            cases[k]()
-            t[k].append(time.perf_counter() - t0)
-    res = {k: float(np.median(x)) / v.size * 1e9 for k, x in t.items()}
-    for k in ("e_star", "e_star_1thread"):
-        res[k + "_ratio"] = float(np.median(np.array(t[k]) / np.array(t["fit"])))
+    cases = {"e_star": lambda: fastrest.e_star(v, e, nu), "e_star_1thread": one, "fit": lambda: fit(v, e, o),
+             "jit_loop": lambda: jit_loop(tab, v, e, nu, o), "jit_chain": lambda: jit_chain(tab, v, e, nu),
+             "fit_chain": lambda: fit_chain(v, e)}
+    res = run(cases, v.size, {"e_star": "fit", "e_star_1thread": "fit", "jit_loop": "fit", "jit_chain": "fit_chain"})
+    if not np.isfinite(jit_chain(tab, v, e, nu)):
+        raise RuntimeError("the latency chain left the table's domain")
     res["n"] = int(v.size)
-    res["checksum"] = float(np.sum(ref))
+    res["checksum"] = float(np.sum(fastrest.e_star(v, e, nu)))
     out[s] = res
+# scalar calls from Python: ns per call
+K = 20000
+cases = {"scalar": lambda: [fastrest.e_star(5.0, 0.005, 0.33) for _ in range(K)],
+         "fit_scalar": lambda: [fit1(5.0, 0.005) for _ in range(K)]}
+out["scalar"] = run(cases, K, {"scalar": "fit_scalar"})
 print(json.dumps(out))
 '''
+
+#: (key, label, reference label) of the cases in the report, per point set.
+CASES = [("e_star", "fastrest.e_star, {threads} threads", "fit kernel"),
+         ("e_star_1thread", "fastrest.e_star, 1 thread", "fit kernel"),
+         ("jit_loop", "jit.e_table in an @njit loop (throughput)", "fit kernel"),
+         ("jit_chain", "jit.e_table, dependent chain (latency)", "fit chain")]
 
 
 def make_points(n, seed=SEED):
@@ -134,41 +168,50 @@ def _commit(file):
 
 
 def _write(path, rows, meta):
-    med = {}
-    for ver in ("old", "new"):
-        for s in ("random", "bench"):
-            for k in ("e_star", "e_star_1thread", "fit", "e_star_ratio", "e_star_1thread_ratio"):
-                med[ver, s, k] = float(np.median([r[s][k] for r in rows[ver]]))
+    def med(ver, s, k):
+        return float(np.median([r[s][k] for r in rows[ver]]))
+
     lines = ["# Multi-material tables: old code against new code, same run", "",
-             "`python -m bench.multi_material_ab` (" + meta["args"] + "). `fastrest.e_star(v, eps_y, nu)` with "
-             "every point its own material, against the closed-form fit kernel (JGM eqs 42-44, per-point eps_y) "
-             "timed in the same subprocess; old and new versions in alternating subprocesses; medians over "
-             f"{meta['rounds']} subprocesses per version ({meta['inner']} rounds each).", "",
+             "`python -m bench.multi_material_ab` (" + meta["args"] + "): every point its own material; each "
+             "case timed against a closed-form fit of JGM eqs (42)-(44) with per-point eps_y in the same "
+             "subprocess (the fit kernel `jgm_fit_jcg_array`, or a dependent chain of `jgm_fit_jcg_scalar` "
+             "for the latency case); old and new versions in alternating subprocesses; medians over "
+             f"{meta['rounds']} subprocesses per version ({meta['inner']} rounds each). The last column is "
+             "the issue-12 criterion (<= 1.10).", "",
              f"* old: {meta['old_commit']}", f"* new: {meta['new_commit']}",
              f"* machine: {meta['cpu']}, {meta['nproc']} CPUs, Numba threads {meta['threads']}",
              f"* load average before / after: {meta['load0']} / {meta['load1']}; other processes kept "
-             f"{meta['other_cores']:.2f} cores busy on average", ""]
+             f"{meta['other_cores']:.2f} cores busy on average (2-thread figures need an idle second core)", ""]
+    summary = {}
     for s, title in (("random", "every point its own random material"),
                      ("bench", "bench.modes.multi_material's points (16 materials, shuffled)")):
         n = rows["new"][0][s]["n"]
         lines += [f"## {title} (n = {n})", "",
-                  "| case | old ns/point | new ns/point | old / fit | new / fit | new/old of ratios |",
+                  "| case | old ns/point | new ns/point | old / ref | new / ref | new/old of ratios |",
                   "|---|---|---|---|---|---|"]
-        for k, name in (("e_star", f"fastrest.e_star, {meta['threads']} threads"),
-                        ("e_star_1thread", "fastrest.e_star, 1 thread")):
-            ro, rn = med["old", s, k + "_ratio"], med["new", s, k + "_ratio"]
-            lines.append(f"| {name} | {med['old', s, k]:.1f} | {med['new', s, k]:.1f} | {ro:.2f} | {rn:.2f} "
-                         f"| **{rn / ro:.3f}** |")
-        lines.append(f"| fit kernel (reference) | {med['old', s, 'fit']:.1f} | {med['new', s, 'fit']:.1f} "
-                     "| 1 | 1 | |")
+        for k, label, _ in CASES:
+            ro, rn = med("old", s, k + "_ratio"), med("new", s, k + "_ratio")
+            summary[s, k] = (ro, rn)
+            lines.append(f"| {label.format(threads=meta['threads'])} | {med('old', s, k):.1f} | "
+                         f"{med('new', s, k):.1f} | {ro:.2f} | {rn:.2f} | **{rn / ro:.3f}** |")
+        for k, label in (("fit", "fit kernel (reference)"), ("fit_chain", "fit chain (reference)")):
+            lines.append(f"| {label} | {med('old', s, k):.1f} | {med('new', s, k):.1f} | | | |")
         lines.append("")
-    lines += ["Per subprocess (ratio to the fit, default threads / 1 thread, random set):", ""]
+    ro, rn = med("old", "scalar", "scalar_ratio"), med("new", "scalar", "scalar_ratio")
+    summary["scalar", "scalar"] = (ro, rn)
+    lines += ["## scalar call from Python", "",
+              "| case | old ns/call | new ns/call | old / ref | new / ref | new/old of ratios |", "|---|---|---|---|---|---|",
+              f"| fastrest.e_star(5.0, 0.005, 0.33) | {med('old', 'scalar', 'scalar'):.0f} | "
+              f"{med('new', 'scalar', 'scalar'):.0f} | {ro:.2f} | {rn:.2f} | **{rn / ro:.3f}** |",
+              f"| jgm_fit_jcg_scalar(5.0, 0.005) (reference) | {med('old', 'scalar', 'fit_scalar'):.0f} | "
+              f"{med('new', 'scalar', 'fit_scalar'):.0f} | | | |", "",
+              "Per subprocess, random set, fastrest.e_star / fit kernel (default threads / 1 thread):", ""]
     for ver in ("old", "new"):
         lines.append(f"* {ver}: " + ", ".join(f"{r['random']['e_star_ratio']:.2f}/{r['random']['e_star_1thread_ratio']:.2f}"
                                                for r in rows[ver]))
     lines.append("")
     Path(path).write_text("\n".join(lines))
-    return med
+    return summary
 
 
 def main(argv=None):
@@ -201,9 +244,9 @@ def main(argv=None):
                 res = run_worker(getattr(a, ver), ["time", path, str(a.inner)], tmp)
                 rows[ver].append(res)
                 print(f"round {r} {ver}: " + "  ".join(
-                    f"{s}: {res[s]['e_star']:.1f} ns ({res[s]['e_star_ratio']:.2f}x), 1 thr "
-                    f"{res[s]['e_star_1thread']:.1f} ns ({res[s]['e_star_1thread_ratio']:.2f}x), "
-                    f"fit {res[s]['fit']:.1f}" for s in ("random", "bench")), flush=True)
+                    f"{s}: " + ", ".join(f"{k} {res[s][k]:.1f} ns ({res[s][k + '_ratio']:.2f}x)" for k, _, _ in CASES)
+                    + f", fit {res[s]['fit']:.1f}" for s in ("random", "bench"))
+                    + f"  scalar {res['scalar']['scalar']:.0f} ns ({res['scalar']['scalar_ratio']:.2f}x)", flush=True)
         c1, wall = cpu_counters(), time.perf_counter() - t0
         other = ((c1[0] - c0[0]) - (c1[1] - c0[1])) / wall if c0 and c1 else float("nan")
     for s in ("random", "bench"):
@@ -215,11 +258,9 @@ def main(argv=None):
             "inner": a.inner, "old_commit": _commit(files["old"]), "new_commit": _commit(files["new"]),
             "cpu": mach.get("cpu"), "nproc": mach.get("nproc"), "threads": rows["new"][0]["threads"],
             "load0": load0, "load1": " ".join(f"{x:.2f}" for x in os.getloadavg()), "other_cores": other}
-    med = _write(a.out, rows, meta)
-    for s in ("random", "bench"):
-        for k in ("e_star", "e_star_1thread"):
-            ro, rn = med["old", s, k + "_ratio"], med["new", s, k + "_ratio"]
-            print(f"{s:6s} {k:15s} old {ro:.2f}x  new {rn:.2f}x  new/old {rn / ro:.3f}")
+    summary = _write(a.out, rows, meta)
+    for (s, k), (ro, rn) in summary.items():
+        print(f"{s:6s} {k:15s} old {ro:.2f}x  new {rn:.2f}x  new/old {rn / ro:.3f}")
     print(f"wrote {a.out}")
 
 
