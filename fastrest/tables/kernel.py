@@ -7,8 +7,12 @@ the same few-ulp cells as :mod:`fastrest.curve`; V1* <= 1 is exact (elastic). A 
 interpolated w_m* exceeds 425 (by more than :data:`OMEGA_LIMIT_TOL`) gives NaN.
 
 Names: ``*_kernel`` evaluate one point (NaN outside the table), ``*_array`` loop over flat arrays
-into ``out``. :func:`table_array` and :func:`interpolant_array` are documented internals for tests
-and bench; users call :class:`~fastrest.tables.Table` methods or :mod:`fastrest.jit`.
+into ``out``. :func:`table_array`, :func:`interpolant_array` and :func:`stencil_coefficients` are
+documented internals for tests and bench; users call :class:`~fastrest.tables.Table` methods or
+:mod:`fastrest.jit`.
+
+Speed (``python -m bench.stencil``): the kernels read the table's arrays through data pointers taken
+before any branch (no reference counting per point) and sum the stencil in vector lanes.
 """
 import math
 
@@ -28,7 +32,7 @@ from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
 from .grid import STENCIL_EPS, STENCIL_NU
 
 __all__ = ["OMEGA_LIMIT_TOL", "OMEGA_LIMIT", "EPS_Y_AR_BINDS", "table_value_kernel", "table_value", "table_array",
-           "table_array_parallel", "interpolant_array"]
+           "table_array_parallel", "interpolant_array", "stencil_coefficients"]
 
 #: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
 OMEGA_LIMIT_TOL = 1e-9
@@ -198,7 +202,7 @@ def _block_value(g, q, b, cell, u, xi, nu):
     j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, nu0, inv_h_nu, n_nu)
     row = 6 * n_nu  # one eps_y node's coefficients
     first = offset[b] + ((cell - cell0[b]) * n + i) * row + 6 * j + q * qstride[b]
-    c0, c1, c2, c3, c4, c5 = _stencil_coefficients(coef, first, row, (e0, e1, e2, e3, e4, e5),
+    c0, c1, c2, c3, c4, c5 = stencil_coefficients(coef, first, row, (e0, e1, e2, e3, e4, e5),
                                                    (n0, n1, n2, n3, n4, n5))
     return estrin5(u, c0, c1, c2, c3, c4, c5)
 
@@ -212,15 +216,34 @@ def _splat(builder, x, n):
 
 
 @intrinsic
-def _stencil_coefficients(typingctx, coef, first, row, we, wn):
-    """The stencil's combined polynomial coefficients: c_k = sum_a sum_b (we[a] wn[b]) p_ab[k].
+def stencil_coefficients(typingctx, coef, first, row, we, wn):
+    """The 6 x 6 stencil's combined polynomial coefficients (jit intrinsic; documented internal).
 
-    ``coef``: data pointer of the table's coefficients; ``first``: index of the stencil's first
-    node (6 coefficients p_ab[0..5] per node, nu nodes b consecutive); ``row``: stride of one
-    eps_y node a. Each c_k is the same sequence of roundings as the scalar loop
-    ``for a: for b: w = we[a] * wn[b]; c_k += w * p_ab[k]`` (plain multiply, then add: fused ones
-    lengthen the dependency chain), the six k in vector lanes (4 + 2): same numbers, a third of
-    the instructions (measured 84 -> 67 ns per point).
+    Parameters
+    ----------
+    coef : CPointer(float64)
+        Data pointer of a table's coefficients (``data_pointer(tab.coef)``).
+    first : int
+        Index in ``coef`` of the stencil's first node: 6 coefficients p_ab[0..5] per node, the 6
+        nu nodes b of one eps_y node consecutive.
+    row : int
+        Stride between eps_y nodes a (6 x n_nu).
+    we, wn : tuple of 6 float
+        Lagrange weights in xi (eps_y) and nu (-).
+
+    Returns
+    -------
+    tuple of 6 float
+        c_k = sum_a sum_b (we[a] wn[b]) p_ab[k], k = 0..5: the coefficients of the interpolated
+        cell polynomial (-).
+
+    Notes
+    -----
+    Each c_k is the sequence of roundings of the scalar loop
+    ``for a: for b: w = we[a] * wn[b]; c_k += w * p_ab[k]`` (a multiply, then an add: fused ones
+    lengthen the dependency chain, measured ~10 % slower), with the six k in vector lanes (4 + 2):
+    the same numbers as that loop, a third of the instructions (``python -m bench.stencil``).
+    Callable from jitted code only.
     """
     f64 = types.float64
     if not (isinstance(coef, types.CPointer) and coef.dtype == f64 and isinstance(first, types.Integer)
