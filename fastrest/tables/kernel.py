@@ -7,9 +7,9 @@ the same few-ulp cells as :mod:`fastrest.curve`; V1* <= 1 is exact (elastic). A 
 interpolated w_m* exceeds 425 (by more than :data:`OMEGA_LIMIT_TOL`) gives NaN.
 
 Names: ``*_kernel`` evaluate one point (NaN outside the table), ``*_array`` loop over flat arrays
-into ``out``. :func:`table_array`, :func:`interpolant_array` and :func:`stencil_coefficients` are
-documented internals for tests and bench; users call :class:`~fastrest.tables.Table` methods or
-:mod:`fastrest.jit`.
+into ``out``. :func:`table_array` and :func:`interpolant_array` are documented internals for tests
+and bench, as is the Numba intrinsic :func:`stencil_coefficients` (jitted callers only, so not in
+``__all__``); users call :class:`~fastrest.tables.Table` methods or :mod:`fastrest.jit`.
 
 Speed (``python -m bench.stencil``): the kernels read the table's arrays through data pointers taken
 before any branch (no reference counting per point) and sum the stencil in vector lanes.
@@ -32,7 +32,7 @@ from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
 from .grid import STENCIL_EPS, STENCIL_NU
 
 __all__ = ["OMEGA_LIMIT_TOL", "OMEGA_LIMIT", "EPS_Y_AR_BINDS", "table_value_kernel", "table_value", "table_array",
-           "table_array_parallel", "interpolant_array", "stencil_coefficients"]
+           "table_array_parallel", "interpolant_array"]
 
 #: The w_m* <= 425 check is made on the interpolated w_m*, with the table's accuracy as tolerance.
 OMEGA_LIMIT_TOL = 1e-9
