@@ -42,7 +42,7 @@ NEW_DEFAULT = str(REPO / ".venv" / "bin" / "python")
 
 # runs in the version's own interpreter, cwd outside any source tree (so it imports that version)
 WORKER = r'''
-import json, sys, time, timeit
+import json, sys, time
 import numpy as np, numba
 import fastrest, fastrest.models as m
 from fastrest import jit as frj
@@ -200,15 +200,16 @@ def _write(path, rows, meta):
     ro, rn = med("old", "scalar", "scalar_ratio"), med("new", "scalar", "scalar_ratio")
     summary["scalar", "scalar"] = (ro, rn)
     lines += ["## scalar call from Python", "",
-              "| case | old ns/call | new ns/call | old / ref | new / ref | new/old of ratios |", "|---|---|---|---|---|---|",
+              "| case | old ns/call | new ns/call | old / ref | new / ref | new/old of ratios |",
+              "|---|---|---|---|---|---|",
               f"| fastrest.e_star(5.0, 0.005, 0.33) | {med('old', 'scalar', 'scalar'):.0f} | "
               f"{med('new', 'scalar', 'scalar'):.0f} | {ro:.2f} | {rn:.2f} | **{rn / ro:.3f}** |",
               f"| jgm_fit_jcg_scalar(5.0, 0.005) (reference) | {med('old', 'scalar', 'fit_scalar'):.0f} | "
               f"{med('new', 'scalar', 'fit_scalar'):.0f} | | | |", "",
               "Per subprocess, random set, fastrest.e_star / fit kernel (default threads / 1 thread):", ""]
     for ver in ("old", "new"):
-        lines.append(f"* {ver}: " + ", ".join(f"{r['random']['e_star_ratio']:.2f}/{r['random']['e_star_1thread_ratio']:.2f}"
-                                               for r in rows[ver]))
+        lines.append(f"* {ver}: " + ", ".join(f"{r['random']['e_star_ratio']:.2f}/"
+                                               f"{r['random']['e_star_1thread_ratio']:.2f}" for r in rows[ver]))
     lines.append("")
     Path(path).write_text("\n".join(lines))
     return summary

@@ -27,8 +27,8 @@ from numba.extending import intrinsic
 from ._jit import jit
 
 __all__ = ["DEGREE", "ROW", "MANTISSA_BITS", "CHEB_U", "GAUSS_U", "VALUES_TO_COEFFS", "float_bits",
-           "fma", "data_pointer", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes", "share_edges",
-           "values_to_coeffs", "fit_cells", "cell_index", "two_level_index", "row_polynomial",
+           "fma", "data_pointer", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes",
+           "share_edges", "values_to_coeffs", "fit_cells", "cell_index", "two_level_index", "row_polynomial",
            "cell_polynomial", "pointer_cell_polynomial"]
 
 DEGREE = 5
@@ -83,7 +83,8 @@ def data_pointer(typingctx, a):
     Kernels that take a tuple of arrays (a table) read its arrays through these pointers: a
     pointer is not reference-counted, while an array (or the tuple) that lives past a branch of
     an inlined kernel costs two atomic instructions per array per call, which also stop the
-    processor from overlapping consecutive calls (measured: a table loop 137 -> 84 ns per point).
+    processor from overlapping consecutive calls (``python -m bench.stencil``: a table loop ~118 vs
+    ~74 ns per point).
     The array must outlive the pointer (it does while the caller holds the table).
     """
     if not (isinstance(a, types.Array) and a.layout == "C"):

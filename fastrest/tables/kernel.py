@@ -120,7 +120,8 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     # The table is read here, in straight-line code before any branch, and its arrays as data
     # pointers: an array, or ``tab`` itself (a tuple of arrays), still alive after a branch is
     # reference-counted on every call with atomic instructions, which also keep the processor
-    # from overlapping consecutive points (Numba; measured: a table loop 137 -> 84 ns per point).
+    # from overlapping consecutive points (Numba; `python -m bench.stencil`: ~118 vs ~74 ns per
+    # point).
     # (The same effect made a namedtuple field read inside a rarely taken branch ~7x slower.)
     eps_lo, eps_hi, nu_lo, nu_hi, v_top, v_safe = tab.eps_lo, tab.eps_hi, tab.nu_lo, tab.nu_hi, tab.v_top, tab.v_safe
     hertz = data_pointer(tab.hertz)
