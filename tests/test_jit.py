@@ -4,6 +4,7 @@ themselves checked against the direct solver in test_curve.py / test_tables.py),
 an exception for invalid points.
 """
 import math
+import re
 
 import numba
 import numpy as np
@@ -176,3 +177,27 @@ def test_scene_in_user_njit():
     outb = np.empty((3, vb.size))
     scene_parallel(s.data, kb, vb, outb)
     assert np.isnan(outb).all()
+
+
+def _table_loop(tab, v, eps, nu, out):
+    for i in range(v.size):
+        out[i] = frj.e_table(tab, v[i], eps[i], nu[i], frj.JCG)
+
+
+def test_table_loop_takes_no_references_per_point():
+    """A user's loop over jit.e_table does no reference counting per point: only the function's
+    own entry takes a reference on each array argument (9 of the table, 4 of the loop). Atomic
+    reference counts inside the loop made table loops ~1.6x slower (fastrest/tables/kernel.py)."""
+    loop = numba.njit(_table_loop)  # not cached: the LLVM IR can be inspected
+    tab = fastrest.load_table().data
+    v = np.array([0.5, 2.0, 5.0, 600.0])
+    out = np.empty(v.size)
+    loop(tab, v, np.full(v.size, EPS), np.full(v.size, NU), out)
+    np.testing.assert_array_equal(out, fastrest.e_star(v, EPS, NU))
+    ir = next(iter(loop.inspect_llvm().values()))
+    # the loop's own function (not its Python wrapper "cpython..." or C wrapper "cfunc...")
+    bodies = [m.group(2) for m in re.finditer(r"^define [^@\n]*@([^\s(]+)\(.*?\n(.*?)^}$", ir, re.M | re.S)
+              if "_table_loop" in m.group(1) and not m.group(1).startswith(("_ZN7cpython", "cfunc"))]
+    assert len(bodies) == 1
+    n_arrays = sum(isinstance(x, np.ndarray) for x in tab) + 4
+    assert 0 < bodies[0].count("call void @NRT_incref(") <= n_arrays

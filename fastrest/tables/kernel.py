@@ -8,19 +8,26 @@ interpolated w_m* exceeds 425 (by more than :data:`OMEGA_LIMIT_TOL`) gives NaN.
 
 Names: ``*_kernel`` evaluate one point (NaN outside the table), ``*_array`` loop over flat arrays
 into ``out``. :func:`table_array` and :func:`interpolant_array` are documented internals for tests
-and bench; users call :class:`~fastrest.tables.Table` methods or :mod:`fastrest.jit`.
+and bench, as is the Numba intrinsic :func:`stencil_coefficients` (jitted callers only, so not in
+``__all__``); users call :class:`~fastrest.tables.Table` methods or :mod:`fastrest.jit`.
+
+Speed (``python -m bench.stencil``): the kernels read the table's arrays through data pointers taken
+before any branch (no reference counting per point) and sum the stencil in vector lanes.
 """
 import math
 
 import numba as nb
 import numpy as np
+from llvmlite import ir
+from numba.core import types
+from numba.extending import intrinsic
 
 from .._jit import jit
 from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
 from ..contact import omega_star_limit_kernel
 from ..critical import c_of_nu
 from ..energy import V_SWITCH
-from ..interpolation import cell_index, cell_polynomial, fma, two_level_index
+from ..interpolation import cell_index, data_pointer, estrin5, pointer_cell_polynomial, two_level_index
 from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
 from .grid import STENCIL_EPS, STENCIL_NU
 
@@ -99,9 +106,8 @@ def table_value_kernel(tab, q, v, eps_y, nu):
     >>> round(table_value_kernel(fastrest.load_table().data, 1, 5.0, 0.005, 0.33), 6)
     0.898078
     """
-    if not (q >= 0 and q < tab.n_quantities):
-        return np.nan
-    # float32 and integer inputs, as the Python API takes them
+    # float32 and integer inputs, as the Python API takes them; q is checked by _interpolate, after
+    # it has read the table (no branch before: see there)
     return _interpolate(tab, q, np.float64(v), np.float64(eps_y), np.float64(nu), True)
 
 
@@ -111,14 +117,24 @@ table_value = table_value_kernel
 
 @jit(inline=True)
 def _interpolate(tab, q, v, eps_y, nu, check_limit):
-    # every field is read here, unconditionally: a namedtuple field read inside a rarely taken
-    # branch (the blend of a block's first cell) made the whole loop ~7x slower (Numba; measured)
+    # The table is read here, in straight-line code before any branch, and its arrays as data
+    # pointers: an array, or ``tab`` itself (a tuple of arrays), still alive after a branch is
+    # reference-counted on every call with atomic instructions, which also keep the processor
+    # from overlapping consecutive points (Numba; `python -m bench.stencil`: ~118 vs ~74 ns per
+    # point).
+    # (The same effect made a namedtuple field read inside a rarely taken branch ~7x slower.)
     eps_lo, eps_hi, nu_lo, nu_hi, v_top, v_safe = tab.eps_lo, tab.eps_hi, tab.nu_lo, tab.nu_hi, tab.v_top, tab.v_safe
-    hertz, cells, cell_block, block_cell0 = tab.hertz, tab.cells, tab.cell_block, tab.block_cell0
-    g = (tab.coef, tab.block_offset, block_cell0, tab.block_inv_h, tab.block_n, tab.block_qstride,
-         tab.xi0, tab.nu0, tab.inv_h_nu, tab.n_nu)
+    hertz = data_pointer(tab.hertz)
+    cells = data_pointer(tab.cells)
+    cell_block = data_pointer(tab.cell_block)
+    block_cell0 = data_pointer(tab.block_cell0)
+    g = (data_pointer(tab.coef), data_pointer(tab.block_offset), block_cell0, data_pointer(tab.block_inv_h),
+         data_pointer(tab.block_n), data_pointer(tab.block_qstride), tab.xi0, tab.nu0, tab.inv_h_nu, tab.n_nu)
     map_rate = tab.map_rate
     split = (tab.v_split, tab.shift_fine, tab.base_fine, tab.shift, tab.base)
+    n_quantities = tab.n_quantities
+    if not (q >= 0 and q < n_quantities):
+        return np.nan
     # a material a few ulp outside an edge (0.001 + 0.0005 * 18 = 0.010000000000000002) is at
     # the edge: clamped there, never extrapolated further
     e_lo, e_hi, n_lo, n_hi = eps_lo, eps_hi, nu_lo, nu_hi
@@ -129,7 +145,7 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     nu = min(max(nu, n_lo), n_hi)
     if not v > V_SWITCH:
         if v > 1.0:  # Hertz loading: the closed forms' cells, the same for every material
-            r = cell_polynomial(hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
+            r = pointer_cell_polynomial(hertz, q * N_HERTZ + cell_index(v, HERTZ_SHIFT, HERTZ_BASE), v)
             return r * (v - 1.0) if q > 0 and q % 2 == 0 else r  # the losses
         if v >= 0.0:  # elastic, exact
             if q == 0:
@@ -139,7 +155,7 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     if not v <= v_top:
         return np.nan
     cell = two_level_index(v, split[0], split[1], split[2], split[3], split[4])
-    u = (v - cells[cell, 0]) * cells[cell, 1]
+    u = (v - cells[2 * cell]) * cells[2 * cell + 1]
     c_eps_y = c_of_nu(nu) * eps_y
     xi = math.expm1(map_rate * c_eps_y) / map_rate if map_rate > 0.0 else c_eps_y
     b = cell_block[cell]
@@ -176,40 +192,90 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
 def _block_value(g, q, b, cell, u, xi, nu):
     """Quantity q in ``cell`` interpolated across materials on block b's grid; ``g`` is the
     table's (coef, block_offset, block_cell0, block_inv_h, block_n, block_qstride, xi0, nu0,
-    inv_h_nu, n_nu). The first cell of a block b > 0 is blended by :func:`_interpolate` from the
-    previous block's grid at its left edge (where the previous cell ends on that grid) to its own
-    at its right edge, so the table is continuous across block boundaries to a few ulp although
-    the two grids interpolate materials differently (by up to the table's error, ~1e-10)."""
+    inv_h_nu, n_nu), the arrays as data pointers. The first cell of a block b > 0 is blended by
+    :func:`_interpolate` from the previous block's grid at its left edge (where the previous cell
+    ends on that grid) to its own at its right edge, so the table is continuous across block
+    boundaries to a few ulp although the two grids interpolate materials differently (by up to
+    the table's error, ~1e-10)."""
     coef, offset, cell0, inv_h, block_n, qstride, xi0, nu0, inv_h_nu, n_nu = g
     n = block_n[b]
     i, e0, e1, e2, e3, e4, e5 = _lagrange6(xi, xi0, inv_h[b], n)
     j, n0, n1, n2, n3, n4, n5 = _lagrange6(nu, nu0, inv_h_nu, n_nu)
     row = 6 * n_nu  # one eps_y node's coefficients
-    first = offset[b] + ((cell - cell0[b]) * n + i) * row + 6 * j
-    return _stencil_sum(coef, first + q * qstride[b], row, u, (e0, e1, e2, e3, e4, e5), (n0, n1, n2, n3, n4, n5))
+    first = offset[b] + ((cell - cell0[b]) * n + i) * row + 6 * j + q * qstride[b]
+    c0, c1, c2, c3, c4, c5 = stencil_coefficients(coef, first, row, (e0, e1, e2, e3, e4, e5),
+                                                   (n0, n1, n2, n3, n4, n5))
+    return estrin5(u, c0, c1, c2, c3, c4, c5)
 
 
-@jit(inline=True)
-def _stencil_sum(coef, first, row, u, we, wn):
-    """sum_ab we[a] wn[b] p_ab(u): combine the coefficients first, then one polynomial (Estrin).
+def _splat(builder, x, n):
+    """An n-lane vector of the double x."""
+    vec = ir.VectorType(ir.DoubleType(), n)
+    v = builder.insert_element(ir.Constant(vec, ir.Undefined), x, ir.Constant(ir.IntType(32), 0))
+    return builder.shuffle_vector(v, ir.Constant(vec, ir.Undefined), ir.Constant(ir.VectorType(ir.IntType(32), n),
+                                                                                  [0] * n))
 
-    ``first``: index in the flat ``coef`` of the stencil's first node; ``row``: stride of one eps_y
-    node. The sums stay plain multiply-adds (fused ones lengthen their dependency chains: measured
-    ~10 % slower); the final polynomial uses fma.
+
+@intrinsic
+def stencil_coefficients(typingctx, coef, first, row, we, wn):
+    """The 6 x 6 stencil's combined polynomial coefficients (jit intrinsic; documented internal).
+
+    Parameters
+    ----------
+    coef : CPointer(float64)
+        Data pointer of a table's coefficients (``data_pointer(tab.coef)``).
+    first : int
+        Index in ``coef`` of the stencil's first node: 6 coefficients p_ab[0..5] per node, the 6
+        nu nodes b of one eps_y node consecutive.
+    row : int
+        Stride between eps_y nodes a (6 x n_nu).
+    we, wn : tuple of 6 float
+        Lagrange weights in xi (eps_y) and nu (-).
+
+    Returns
+    -------
+    tuple of 6 float
+        c_k = sum_a sum_b (we[a] wn[b]) p_ab[k], k = 0..5: the coefficients of the interpolated
+        cell polynomial (-).
+
+    Notes
+    -----
+    Each c_k is the sequence of roundings of the scalar loop
+    ``for a: for b: w = we[a] * wn[b]; c_k += w * p_ab[k]`` (a multiply, then an add: fused ones
+    lengthen the dependency chain, measured ~10 % slower), with the six k in vector lanes (4 + 2):
+    the same numbers as that loop, a third of the instructions (``python -m bench.stencil``).
+    Callable from jitted code only.
     """
-    c0 = c1 = c2 = c3 = c4 = c5 = 0.0
-    for a in range(STENCIL_EPS):
-        for b in range(STENCIL_NU):
-            w = we[a] * wn[b]
-            k = np.uint64(first + a * row + 6 * b)
-            c0 += w * coef[k]
-            c1 += w * coef[k + np.uint64(1)]
-            c2 += w * coef[k + np.uint64(2)]
-            c3 += w * coef[k + np.uint64(3)]
-            c4 += w * coef[k + np.uint64(4)]
-            c5 += w * coef[k + np.uint64(5)]
-    u2 = u * u
-    return fma(u2 * u2, fma(u, c5, c4), fma(u2, fma(u, c3, c2), fma(u, c1, c0)))
+    f64 = types.float64
+    if not (isinstance(coef, types.CPointer) and coef.dtype == f64 and isinstance(first, types.Integer)
+            and isinstance(row, types.Integer) and we == types.UniTuple(f64, STENCIL_EPS)
+            and wn == types.UniTuple(f64, STENCIL_NU)):
+        return None
+    sig = types.UniTuple(f64, 6)(coef, first, row, we, wn)
+
+    def codegen(context, builder, signature, args):
+        p, first_, row_, we_, wn_ = args
+        i64 = ir.IntType(64)
+        first_ = context.cast(builder, first_, signature.args[1], types.int64)
+        row_ = context.cast(builder, row_, signature.args[2], types.int64)
+        lanes = (4, 2)  # lanes of coefficients 0-3 and 4-5
+        acc = [ir.Constant(ir.VectorType(ir.DoubleType(), n), [0.0] * n) for n in lanes]
+        for a in range(STENCIL_EPS):
+            ea = builder.extract_value(we_, a)
+            start = builder.add(first_, builder.mul(row_, ir.Constant(i64, a)))
+            for b in range(STENCIL_NU):
+                w = builder.fmul(ea, builder.extract_value(wn_, b))
+                node = builder.gep(p, [builder.add(start, ir.Constant(i64, 6 * b))])
+                for m, (n, k0) in enumerate(zip(lanes, (0, 4))):
+                    vec = ir.VectorType(ir.DoubleType(), n)
+                    x = builder.load(builder.bitcast(builder.gep(node, [ir.Constant(i64, k0)]), vec.as_pointer()),
+                                     align=8)
+                    acc[m] = builder.fadd(acc[m], builder.fmul(_splat(builder, w, n), x))
+        out = [builder.extract_element(acc[m], ir.Constant(ir.IntType(32), k)) for m, n in enumerate(lanes)
+               for k in range(n)]
+        return context.make_tuple(builder, signature.return_type, out)
+
+    return sig, codegen
 
 
 @jit
