@@ -20,6 +20,12 @@ w_m* = 425 or a/R = 1): check with ``x != x`` or
 ``np.isnan`` if your code can produce such input. Tables: ``fastrest.load_table().data``;
 ``unloading`` is :data:`JCG` (eq 35), :data:`ETSION` (eq 33) or :data:`BRAKE` (Brake 2015).
 
+Build the data in Python and pass it in as an argument (as above): the table kernels read a
+TableData's arrays through data pointers, which needs the arrays alive for the whole call. These
+functions are inlined into your code; with ``@numba.njit(cache=True)`` your cached function keeps
+the fastrest code it was compiled with until its own file changes (Numba's cache checks only that
+file): clear your ``__pycache__/*.nbi``/``*.nbc`` (or set ``NUMBA_CACHE_DIR``) after updating fastrest.
+
 Time-stepping codes: :func:`contact_force` (``law.data`` of :func:`fastrest.contact_law`, a state
 row of :data:`STATE_SIZE` per contact) gives the normal force with history, and
 :func:`critical_scales` the critical values of a contact from the two bodies' properties (the
