@@ -87,7 +87,7 @@ def data_pointer(typingctx, a):
     ~74 ns per point).
     The array must outlive the pointer: it does while the caller holds the table (a TableData
     passed in from Python); a table built in jitted code and dropped at the call is not supported
-    (keeping it alive in the kernel brings the reference counting back: 117 vs 72 ns per point).
+    (keeping it alive in the kernel brings the per-point reference counting back).
     """
     if not (isinstance(a, types.Array) and a.layout == "C"):
         return None
