@@ -96,6 +96,12 @@ def _env(cache_dir=None):
     return env
 
 
+def warm_cache():
+    """``fastrest warmup`` into the Numba cache the fresh processes use (the documented way)."""
+    subprocess.run([sys.executable, "-m", "fastrest", "warmup"], cwd=REPO, env=_env(), check=True,
+                   capture_output=True, timeout=3600)
+
+
 def _run(code, env, timeout=600):
     wait_for_quiet()
     t0 = time.perf_counter()
@@ -141,9 +147,7 @@ def first_use(cfg, log=print):
     floor_env["PYTHONPATH"] = floor_dir + os.pathsep + floor_env["PYTHONPATH"]
     _run(_FLOOR, floor_env)  # warm its cache
     floors = []
-    # the documented way to warm the cache; each entry's first call below comes after it alone
-    subprocess.run([sys.executable, "-m", "fastrest", "warmup"], cwd=REPO, env=_env(), check=True,
-                   capture_output=True, timeout=3600)
+    warm_cache()  # each entry's first call below comes after it alone
     for name, call in FIRST_USE.items():
         code = _LATENCY.format(call=call)
         rows = {"warm": [], "cold": []}
@@ -188,9 +192,7 @@ def own_rss_mib():
 
 
 def peak_memory(cfg, log=print):
-    # a warm cache, as users have it (`python -m bench` compiles into a fresh one): peaks without compiling
-    subprocess.run([sys.executable, "-m", "fastrest", "warmup"], cwd=REPO, env=_env(), check=True,
-                   capture_output=True, timeout=3600)
+    warm_cache()  # peaks as users see them, without compiling (`python -m bench` uses a fresh cache)
     res = {"_parent_rss_mib": own_rss_mib()}
     n = cfg["memory_batch_n"]
     for name, (setup, code) in MEMORY.items():
