@@ -18,30 +18,15 @@ import reference
 from fastrest import tables
 from fastrest.tables import store
 
-EPS = (0.0005, 0.01)
-NU = (0.2, 0.45)
+# random materials and w*, every edge and corner (and the last ulp inside) at w* from 0 to 425:
+# the sample bench/W_STAR_READER.md reports on
+from bench.w_star_reader import sample
+
 #: Measured on the shipped table: 8.4e-11 (worst over this sample, at w* = 405, eps_y = 0.0091,
 #: nu = 0.206: the plain eps_y axis of 32 nodes, where cos(pi a/R) varies fastest; bench/W_STAR_READER.md).
 TOL_W_STAR = 2e-10
 TINY_GRID = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
                  bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6)
-
-
-def sample(n=4000, seed=77):
-    """Random materials and w* (log-uniform over (1.9, 425]), plus every edge and corner of the
-    table (down to the last ulp inside) at w* from 0 to 425 including the switch at 1.9."""
-    rng = np.random.default_rng(seed)
-    e = rng.uniform(*EPS, n)
-    nu = rng.uniform(*NU, n)
-    w = np.exp(rng.uniform(math.log(1.9), math.log(425.0), n))
-    ws = np.concatenate([np.geomspace(1.9, 425.0, 60), [0.0, 0.5, 1.0, 1.5, 1.9, math.nextafter(1.9, 3.0),
-                                                        math.nextafter(425.0, 0.0), 425.0]])
-    edges = [(a, b) for a in (EPS[0], math.nextafter(EPS[0], 1.0), 0.005, math.nextafter(EPS[1], 0.0), EPS[1])
-             for b in (NU[0], math.nextafter(NU[0], 1.0), 0.33, math.nextafter(NU[1], 0.0), NU[1])]
-    e = np.concatenate([e] + [np.full(ws.size, a) for a, _ in edges])
-    nu = np.concatenate([nu] + [np.full(ws.size, b) for _, b in edges])
-    w = np.concatenate([w] + [ws] * len(edges))
-    return w, e, nu
 
 
 def test_loading_energy_matches_quadrature_over_the_domain():
