@@ -151,12 +151,14 @@ def _cmd_build(args):
     from .tables.error import DEFAULT_TOL
 
     tol = args.tol if args.tol is not None else (DEFAULT_TOL if args.default else None)
+    from .export.cli import cli_names
     from .tables.error import AccuracyWarning
 
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", AccuracyWarning)
-        table = tables.build(out, grid, progress=None if args.progress else False, tol=tol)
+        with cli_names({"path": "--out", "tol": "--tol"}, out=None):
+            table = tables.build(out, grid, progress=None if args.progress else False, tol=tol)
     dt = time.perf_counter() - t0
     print(f"wrote {table.path} in {dt:.1f} s" + (f" (tol {tol:g})" if tol is not None else ""))
     _print_errors(table.attrs.get("measured_error", {}))
@@ -277,10 +279,12 @@ def _cmd_figures(args):
         print("fastrest figures: matplotlib is required; install it with: pip install fastrest[plot]",
               file=sys.stderr)
         return 1
+    from .export.cli import cli_names
     from .figures import write_all
 
     t0 = time.perf_counter()
-    paths = write_all(args.out, dpi=args.dpi)
+    with cli_names({"dpi": "--dpi", "out_dir": "--out"}):
+        paths = write_all(args.out, dpi=args.dpi)
     for p in paths:
         print(f"wrote {p}")
     print(f"{len(paths)} figures in {time.perf_counter() - t0:.1f} s")
@@ -374,7 +378,7 @@ def main(argv=None):
 
     pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)")
     pf.add_argument("--out", required=True, help="output directory (created if needed)")
-    pf.add_argument("--dpi", type=int, default=150, help="resolution (default: 150)")
+    pf.add_argument("--dpi", type=int, default=150, help="resolution, 1 to 1200 (default: 150)")
     pf.set_defaults(func=_cmd_figures)
 
     from .export.cli import add_parser as add_export_parser

@@ -15,18 +15,19 @@ Categories:
 * ``page``: a 4 KiB page of zeros (the first, the last, random ones); ``appended``: bytes added;
 * ``hostile``: well-formed files with a recomputed header digest (and, where the arrays changed,
   a recomputed ``checksum`` attribute), as an attacker would make them: external and soft links,
-  groups, named datatypes, virtual datasets, external raw storage (/dev/zero, another file),
+  groups, named datatypes, virtual datasets, external raw storage (a zero device made in the work directory, another file),
   chunked or compressed data, huge declared shapes, wrong dtypes (float32, float16, int, bool,
   big-endian, complex, strings), NaN or inf in the data, grid attributes with huge counts, deeply
   nested JSON, wrong attribute types, implausible values (e = 0, a loss not 1 - e^2), a foreign HDF5 file, an HDF5 file without a header (a table
   of an older fastrest);
-* ``special``: a FIFO, a directory, symbolic links to /dev/zero, /dev/null and a FIFO, a dangling
+* ``special``: a FIFO, a directory, symbolic links to zero/null/urandom devices made in the work directory and to a FIFO, a dangling
   link, a missing file, an empty file, a sparse file larger than the size limit.
 """
 import argparse
 import hashlib
 import json
 import os
+import stat
 import shutil
 import sys
 import tempfile
@@ -155,9 +156,33 @@ def resealed_ok(results, base_fingerprint):
     return [r for r in results if r[0] == "resealed" and r[2] not in ("refused", f"accepted {base_fingerprint}")]
 
 
+def device_nodes(workdir):
+    """Character devices like /dev/zero, /dev/null, /dev/urandom, made in ``workdir`` (as root; a
+    hostile file may point at such a device: the corpus never touches the system's /dev).
+    {name: path}; empty where mknod is not permitted."""
+    d = Path(workdir) / "dev"
+    d.mkdir(exist_ok=True)
+    out = {}
+    for name, minor in (("zero", 5), ("null", 3), ("urandom", 9)):
+        path = d / name
+        try:
+            if not path.exists():
+                os.mknod(path, stat.S_IFCHR | 0o600, os.makedev(1, minor))
+        except (PermissionError, AttributeError, OSError):
+            continue
+        out[name] = path
+    return out
+
+
 def hostile_cases(base, workdir):
     """(category, name, builder) of well-formed hostile files; builder(path) writes one."""
     other = Path(workdir) / "other-data.bin"
+    # a zero device of our own (else a regular file of zeros: the case still points outside the file)
+    zero = device_nodes(workdir).get("zero")
+    if zero is None:
+        zero = Path(workdir) / "zeros.bin"
+        zero.write_bytes(bytes(1 << 16))
+    zero = str(zero)
     other.write_bytes(np.zeros(1 << 16).tobytes())
 
     def edit(fn, checksum=False):
@@ -194,7 +219,7 @@ def hostile_cases(base, workdir):
         shape = f["v1_star_max"].shape
         del f["v1_star_max"]
         layout = h5py.VirtualLayout(shape=shape, dtype="f8")
-        layout[:] = h5py.VirtualSource("/dev/zero", "x", shape=shape)
+        layout[:] = h5py.VirtualSource(zero, "x", shape=shape)
         f.create_virtual_dataset("v1_star_max", layout)
 
     def values(name, fn):
@@ -221,12 +246,12 @@ def hostile_cases(base, workdir):
         "virtual-dataset-replacing-data": edit(vds_replacing),
         "external-storage-dev-zero": edit(lambda f: replace_dataset(
             f, "v1_star_max", None, shape=f["v1_star_max"].shape, dtype="f8",
-            external=[("/dev/zero", 0, 8 * f["v1_star_max"].size)])),
+            external=[(zero, 0, 8 * f["v1_star_max"].size)])),
         "external-storage-file": edit(lambda f: replace_dataset(
             f, "v1_star_max", None, shape=f["v1_star_max"].shape, dtype="f8",
             external=[(str(other), 0, 8 * f["v1_star_max"].size)])),
         "extra-dataset-external-storage": edit(lambda f: f.create_dataset(
-            "x", shape=(1000,), dtype="f8", external=[("/dev/zero", 0, 8000)])),
+            "x", shape=(1000,), dtype="f8", external=[(zero, 0, 8000)])),
         "huge-declared-shape-64GiB": edit(lambda f: f.create_dataset("huge", shape=(1 << 33,), dtype="f8")),
         "huge-declared-shape-71TiB": edit(lambda f: f.create_dataset("huge", shape=(1 << 20, 1 << 20, 9), dtype="f8")),
         "huge-chunked": edit(lambda f: f.create_dataset("huge", shape=(1 << 40,), dtype="f8", chunks=(1024,))),
@@ -308,11 +333,10 @@ def special_cases(workdir):
         (d / "link-to-fifo.h5").symlink_to(fifo)
         out.append(("special", "symlink-to-fifo", d / "link-to-fifo.h5"))
     out.append(("special", "directory", d))
-    for dev in ("/dev/zero", "/dev/null", "/dev/urandom"):
-        if os.path.exists(dev):
-            link = d / f"link-{Path(dev).name}.h5"
-            link.symlink_to(dev)
-            out.append(("special", f"symlink-to-{dev}", link))
+    for name, dev in device_nodes(workdir).items():
+        link = d / f"link-{name}.h5"
+        link.symlink_to(dev)
+        out.append(("special", f"symlink-to-{name}-device", link))
     (d / "dangling.h5").symlink_to(d / "nowhere")
     out.append(("special", "dangling-symlink", d / "dangling.h5"))
     out.append(("special", "missing", d / "missing.h5"))

@@ -105,5 +105,33 @@ def test_bad_input(tmp_path, capsys, argv, option):
 
 
 def test_unwritable_output(tmp_path, capsys):
-    assert cli.main(["export", "grid", "--out", str(tmp_path / "no" / "g.nc")]) == 2
-    assert "--out" in capsys.readouterr().err
+    """A missing directory is a file-system error (exit 1, as `build`), found before the grid is built."""
+    out = tmp_path / "no" / "g.nc"
+    assert cli.main(["export", "grid", "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "--out" in err and str(out) in err and "No such file or directory" in err
+
+
+def test_elastic_range_is_gridded(grid_file):
+    """0 <= V1* <= 1 (elastic) is on the grid: e = 1, 1 - e^2 = 0, w_m* = V1*^0.8 within tol
+    (it was NaN: the grid started at V1* = 1)."""
+    rng = np.random.default_rng(20)
+    with xr.open_dataset(grid_file, engine="h5netcdf") as ds:
+        v1 = ds.v1_star.values
+        assert v1[0] == 0.0 and 1.0 in v1
+        m = 400
+        v = np.concatenate([[0.0, 1.0], rng.uniform(0.0, 1.0, m - 2)])
+        e = rng.uniform(ds.eps_y.values[0], ds.eps_y.values[-1], m)
+        n = rng.uniform(ds.nu.values[0], ds.nu.values[-1], m)
+        pts = dict(v1_star=xr.DataArray(v, dims="p"), eps_y=xr.DataArray(e, dims="p"), nu=xr.DataArray(n, dims="p"))
+        for code, model in enumerate(fastrest.unloading.NAMES):
+            ref = _direct(v, e, n, code)
+            assert np.all(ref[1] == 1.0) and np.all(ref[2] == 0.0)
+            for name, row in ((f"e_{model}", 1), (f"loss_{model}", 2), ("omega_m", 0)):
+                got = ds[name].interp(**pts).values
+                assert not np.isnan(got).any(), name
+                assert np.max(np.abs(got - ref[row])) <= TOL, name
+            elastic = v1 <= 1.0
+            assert np.all(ds[f"e_{model}"].values[elastic] == 1.0)
+            assert np.all(ds[f"loss_{model}"].values[elastic] == 0.0)
+        assert np.array_equal(ds.omega_m.values[elastic, 0, 0], v1[elastic] ** 0.8)

@@ -1,6 +1,7 @@
 """Tests of the HDF5 table storage layer (fastrest.tables.hdf5, hdf5_read, file)."""
 import os
 import signal
+import stat
 import subprocess
 import sys
 import textwrap
@@ -324,19 +325,27 @@ def test_write_error_gives_oserror_naming_path_and_keeps_old_file(tmp_path, monk
 
 
 def test_unwritable_targets_give_oserror_naming_path(tmp_path):
+    """A directory, a missing directory, a FIFO and a character device (made in tmp_path: no test
+    touches the system's /dev) are refused and left as they were, even by root."""
     axes, datasets, attrs = example()
     (tmp_path / "dir.h5").mkdir()
-    targets = [tmp_path / "dir.h5", tmp_path / "missing-dir" / "t.h5"]
-    if os.path.exists("/dev/null"):
-        targets.append("/dev/null")  # never replaced by a table, even by root
-    if os.path.isdir("/proc/self"):
-        targets.append("/proc/self/table.h5")
+    os.mkfifo(tmp_path / "fifo.h5")
+    targets = [tmp_path / "dir.h5", tmp_path / "missing-dir" / "t.h5", tmp_path / "fifo.h5"]
+    kept = ["dir.h5", "fifo.h5"]
+    try:
+        os.mknod(tmp_path / "null.h5", stat.S_IFCHR | 0o600, os.makedev(1, 3))
+        targets.append(tmp_path / "null.h5")
+        kept.append("null.h5")
+    except OSError:
+        pass  # not root: the FIFO stands for the special files
     for target in targets:
         with pytest.raises(OSError) as excinfo:
             write_table(target, axes, datasets, attrs)
         assert str(target) in str(excinfo.value), excinfo.value
-    assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["dir.h5"]
+    assert stat.S_ISFIFO(os.stat(tmp_path / "fifo.h5").st_mode)
+    if "null.h5" in kept:
+        assert stat.S_ISCHR(os.stat(tmp_path / "null.h5").st_mode)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(kept)
 
 
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this system")

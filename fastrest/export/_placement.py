@@ -47,8 +47,8 @@ def place_rows(value_fn, knots, tol, max_rows=200000, log=False, skip=JUMP[0], w
             return x
         if np.any(bad & (b - a <= 1e-12 * np.abs(b))):
             k = int(np.flatnonzero(bad & (b - a <= 1e-12 * np.abs(b)))[0])
-            raise ValueError(f"--tol = {tol!r} cannot be met: the function jumps near {a[k]!r}")
+            raise ValueError(f"tol = {tol!r} cannot be met: the function jumps near {a[k]!r}")
         if x.size + np.count_nonzero(bad) > max_rows:
-            raise ValueError(f"--tol = {tol!r} cannot be met with at most {max_rows} {what}; "
-                             "give a larger --tol")
+            raise ValueError(f"tol = {tol!r} cannot be met with at most {max_rows} {what}; "
+                             "give a larger tol")
         x = np.unique(np.concatenate([x, from_t(0.5 * (ta[bad] + tb[bad]))]))

@@ -22,13 +22,20 @@ from ..energy import V_SWITCH
 from ..interpolation import ROW
 from ..limits import v1_star_limit
 from .. import unloading as _unloading
-from ._io import atomic_write_text, provenance
+from ._io import check_target, provenance, write_files
 
-__all__ = ["parse_materials", "scene_curves", "header_text", "write_header"]
+__all__ = ["MAX_MATERIALS", "parse_materials", "scene_curves", "header_text", "write_header"]
+
+#: Most materials in one header (each adds ~420 kB of rows and a curve build).
+MAX_MATERIALS = 256
 
 
-def parse_materials(items, option="--materials"):
+def parse_materials(items, option="materials"):
     """[(eps_y, nu), ...] from ``EPS_Y:NU`` strings; ValueError naming ``option`` otherwise."""
+    if isinstance(items, (str, bytes)) or not hasattr(items, "__len__"):
+        raise TypeError(f"{option} must be a list of 'EPS_Y:NU' strings, got {type(items).__name__}")
+    if len(items) > MAX_MATERIALS:
+        raise ValueError(f"{option}: at most {MAX_MATERIALS} materials in one header; got {len(items)}")
     out = []
     for s in items:
         parts = str(s).split(":")
@@ -44,11 +51,23 @@ def parse_materials(items, option="--materials"):
     return out
 
 
-def scene_curves(materials, v_max=None, option="--v-max"):
+def _check_materials(materials):
+    if isinstance(materials, (str, bytes)) or not hasattr(materials, "__len__"):
+        raise TypeError(f"materials must be a list of (eps_y, nu) pairs, got {type(materials).__name__}")
+    if not 1 <= len(materials) <= MAX_MATERIALS:
+        raise ValueError(f"materials must hold 1 to {MAX_MATERIALS} (eps_y, nu) pairs; got {len(materials)}")
+    for k, m in enumerate(materials):
+        if isinstance(m, (str, bytes)) or not hasattr(m, "__len__") or len(m) != 2:
+            raise TypeError(f"materials[{k}] must be an (eps_y, nu) pair, got {m!r}")
+
+
+def scene_curves(materials, v_max=None, option="v_max"):
     """Curve data per (material, unloading model): list over materials of lists over model codes.
 
-    Each material's curve reaches ``v_max`` (a V1*), by default its own w_m* = 425 speed.
+    Each material's curve reaches ``v_max`` (a V1*), by default its own w_m* = 425 speed;
+    ``materials`` holds 1 to :data:`MAX_MATERIALS` (eps_y, nu) pairs.
     """
+    _check_materials(materials)
     if v_max is not None:
         v_max = real_scalar(v_max, option)
         if not (v_max > 0 and math.isfinite(v_max)):
@@ -207,7 +226,13 @@ def header_text(materials, curves, name="fastrest_scene.h", command=None):
 
 
 def write_header(path, materials, v_max=None, command=None):
-    """Build the curves and write the header atomically; returns (path, curves)."""
+    """Build the curves and write the header atomically; returns (path, curves).
+
+    ``path`` must be a regular file or a new path in a writable directory (checked first, as are
+    ``materials`` and ``v_max``); a failed write (full disk) raises OSError naming ``path`` and
+    leaves the old file intact.
+    """
+    path = check_target(path, "path", "the header")
     curves = scene_curves(materials, v_max)
-    atomic_write_text(path, header_text(materials, curves, os.path.basename(os.fspath(path)), command), option="--out")
+    write_files({path: header_text(materials, curves, os.path.basename(path), command)}, "path", "the header")
     return path, curves

@@ -1,20 +1,56 @@
-"""``fastrest export {grid,velocity,c}``: the command-line side of :mod:`fastrest.export`."""
+"""``fastrest export {grid,velocity,c}``: the command-line side of :mod:`fastrest.export`.
+
+The Python functions name their own parameters in errors (``V_max``, ``tol``, ``path``); the
+commands translate those names into their options (:func:`cli_names`).
+"""
+import contextlib
+import re
 import shlex
 import time
 
-__all__ = ["add_parser"]
+__all__ = ["add_parser", "cli_names"]
+
+_PAIR_OPTIONS = {k: "--" + k.replace("_", "-") for k in
+                 ("E", "nu", "Sy", "R", "rho", "mass", "flat_E", "flat_nu", "flat_Sy")}
+
+
+@contextlib.contextmanager
+def cli_names(names, out="--out"):
+    """Re-raise a TypeError or ValueError with the Python parameters of ``names`` (parameter ->
+    option) written as the command's options, and an OSError (it names the file) prefixed with
+    the option ``out`` that gave the file (None: unchanged).
+
+    A parameter is translated where a message names it as one: followed by ``=``, ``must``,
+    ``is``, ``need(s)``, ``and``, ``or``, ``(`` or the end; ``path`` and ``out`` (also English
+    words) only before ``=`` or ``must``.
+    """
+    try:
+        yield
+    except OSError as exc:
+        if out is None or exc.errno is None or exc.strerror is None:
+            raise
+        raise OSError(exc.errno, f"{out}: {exc.strerror}") from None
+    except (TypeError, ValueError) as exc:
+        msg = str(exc)
+        for name, option in names.items():
+            after = r"\s+(?:=|must\b)" if name in ("path", "out") else \
+                r"(?:\s+(?:=|must\b|is\b|needs?\b|and\b|or\b|\()|\s*$|:)"
+            msg = re.sub(rf"(?<![\w\-'.\[]){re.escape(name)}(?={after})", option, msg)
+        if msg == str(exc):
+            raise
+        raise type(exc)(msg) from None
 
 
 def _cmd_c(args):
     from . import c_header
 
-    if args.v_max is not None and args.v_max != args.v_max:
-        raise ValueError("--v-max must be a finite V1* > 0; got nan")
-    materials = c_header.parse_materials(args.materials)
-    command = ("fastrest export c --materials " + " ".join(shlex.quote(m) for m in args.materials)
-               + (f" --v-max {args.v_max!r}" if args.v_max is not None else ""))
-    t0 = time.perf_counter()
-    path, curves = c_header.write_header(args.out, materials, args.v_max, command)
+    names = {"v_max": "--v-max", "materials": "--materials", "path": "--out"}
+    with cli_names(names):
+        materials = c_header.parse_materials(args.materials)
+        command = ("fastrest export c --materials " + " ".join(shlex.quote(m) for m in args.materials)
+                   + (f" --v-max {args.v_max!r}" if args.v_max is not None else ""))
+        t0 = time.perf_counter()
+        path, curves = c_header.write_header(args.out, materials, args.v_max, command)
     print(f"wrote {path} ({len(materials)} materials, {len(curves[0])} unloading models) "
           f"in {time.perf_counter() - t0:.1f} s")
     for k, c in enumerate(curves):
@@ -25,25 +61,39 @@ def _cmd_c(args):
 def _cmd_velocity(args):
     from . import velocity
 
+    names = {"V_max": "--V-max", "tol": "--tol", "out": "--out"}
+    if args.pairs is None:
+        names.update(_PAIR_OPTIONS)
+    with cli_names(names):
+        pairs = _velocity_pairs(args, velocity)
+        t0 = time.perf_counter()
+        results, paths = velocity.write_velocity(args.out, pairs, args.tol, args.V_max)
+    return _print_velocity(results, paths, t0)
+
+
+def _velocity_pairs(args, velocity):
     if args.pairs is not None:
-        given = [k for k in ("E", "nu", "Sy", "R", "rho", "mass", "flat_E", "flat_nu", "flat_Sy")
-                 if getattr(args, k) is not None]
+        given = [k for k in _PAIR_OPTIONS if getattr(args, k) is not None]
         if given:
             raise ValueError(f"--pairs takes the materials from the file; do not also give "
-                             f"{', '.join('--' + g.replace('_', '-') for g in given)}")
-        pairs = velocity.read_pairs(args.pairs)
+                             f"{', '.join(_PAIR_OPTIONS[g] for g in given)}")
+        try:
+            pairs = velocity.read_pairs(args.pairs)
+        except ValueError as exc:
+            raise ValueError(f"--pairs: {exc}") from None
         if args.pair:
             by = {p["name"]: p for p in pairs}
             unknown = [n for n in args.pair if n not in by]
             if unknown:
                 raise ValueError(f"--pair: unknown pair(s) {unknown}; {args.pairs} holds {sorted(by)}")
             pairs = [by[n] for n in args.pair]
-    else:
-        if args.pair:
-            raise ValueError("--pair selects pairs of a --pairs file")
-        pairs = [velocity.pair_from_options(**{k: getattr(args, k) for k in velocity.PAIR_KEYS if k != "name"})]
-    t0 = time.perf_counter()
-    results, paths = velocity.write_velocity(args.out, pairs, args.tol, args.V_max)
+        return pairs
+    if args.pair:
+        raise ValueError("--pair selects pairs of a --pairs file")
+    return [velocity.pair_from_options(**{k: getattr(args, k) for k in velocity.PAIR_KEYS if k != "name"})]
+
+
+def _print_velocity(results, paths, t0):
     for p, r in results:
         name = f"{p['name']}: " if p.get("name") else ""
         print(f"{name}{r['columns']['V_m_s'].size} rows, V up to {r['V_max']:.6g} m/s "
@@ -60,7 +110,8 @@ def _cmd_grid(args):
     from . import grid
 
     t0 = time.perf_counter()
-    ds, report = grid.write_grid(args.out, tol=args.tol, table_path=args.table, n_check=args.check_points)
+    with cli_names({"tol": "--tol", "n_check": "--check-points", "path": "--out"}):
+        ds, report = grid.write_grid(args.out, tol=args.tol, table_path=args.table, n_check=args.check_points)
     shape = " x ".join(f"{k} {v}" for k, v in report["shape"].items())
     print(f"wrote {args.out}: {shape} nodes, {', '.join(report['variables'])} "
           f"in {time.perf_counter() - t0:.1f} s")

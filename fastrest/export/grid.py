@@ -3,37 +3,42 @@
 Variables ``omega_m`` (w_m*), ``e_<model>`` and ``loss_<model>`` (1 - e^2) of every unloading model
 a table holds, on coordinates ``v1_star`` (V1* = V1/V_c), ``eps_y`` and ``nu``, with NaN wherever
 the model is undefined (w_m* > 425 for that material, or past a/R = 1). Node values come from the
-table (:mod:`fastrest.tables`, ~1e-9 of the direct solver); V1* <= 1 (elastic: e = 1,
-1 - e^2 = 0, w_m* = V1*^0.8) is not gridded, the grid starts at V1* = 1.
+table (:mod:`fastrest.tables`, ~1e-9 of the direct solver), the elastic range 0 <= V1* <= 1
+included (e = 1, 1 - e^2 = 0, w_m* = V1*^0.8, evaluated by the table's kernel): the grid starts
+at V1* = 0.
 
 Node placement: each axis is refined by bisection, independently, until linear interpolation along
 it is within tol/3 at 7 points inside every interval, for probe lines across the other two axes;
-the V1* axis is checked both linear in ln V1* and linear in V1* (what ``xarray``'s ``.interp`` does)
-and has nodes on both sides of the model's jump at V1* = 1.9^1.25 (:data:`._placement.JUMP`:
+the V1* axis is checked linear in V1* (what ``xarray``'s ``.interp`` does) and, above V1* = 1,
+also linear in ln V1*, and has nodes on both sides of the model's jump at V1* = 1.9^1.25 (:data:`._placement.JUMP`:
 the Jackson-Green loading law does not meet Hertz's at w* = 1.9, so e jumps there). The result is then measured at random points against
 the direct solver (:mod:`fastrest.direct`): trilinear and tricubic (4-point Lagrange per axis)
-interpolation in (ln V1*, eps_y, nu). Error: |interpolated - exact| / max(|exact|, 1), i.e.
+interpolation in (:func:`v_coordinate` (V1*), eps_y, nu): V1* - 1 up to V1* = 1, ln V1* above. Error: |interpolated - exact| / max(|exact|, 1), i.e.
 absolute for e and 1 - e^2, relative for w_m* > 1.
 """
 import json
 
 import numpy as np
 
-from .._validation import real_scalar
+from .._validation import check_count, real_scalar
 from ..direct import impact_array
 from ..limits import v1_star_limit
-from ..tables import QUANTITIES, load_table
+from ..tables import QUANTITIES, Table, load_table
 from ..tables.kernel import table_array
 from .. import unloading as _unloading
-from ._io import atomic_path, provenance
+from ._io import check_target, provenance, write_files
 from ._placement import JUMP, place_rows, scaled_error as _err
 
-__all__ = ["DEFAULT_TOL", "TOL_MIN", "MAX_NODES", "grid_arrays", "measure", "to_xarray", "write_grid"]
+__all__ = ["DEFAULT_TOL", "TOL_MIN", "MAX_NODES", "MIN_CHECK_POINTS", "MAX_CHECK_POINTS", "grid_arrays",
+           "measure", "v_coordinate", "to_xarray", "write_grid"]
 
 DEFAULT_TOL = 1e-3
 #: The table's own error is ~1e-9; below 1e-6 its nodes would not be accurate enough to measure against.
 TOL_MIN = 1e-6
 MAX_NODES = 20_000_000
+#: Bounds of the random points of :func:`measure` (each costs a direct solve per model and ~1 kB).
+MIN_CHECK_POINTS = 100
+MAX_CHECK_POINTS = 1_000_000
 
 
 def _names(table):
@@ -53,13 +58,37 @@ def _eval(table, v, e, n):
     return out
 
 
-def grid_arrays(table=None, tol=DEFAULT_TOL):
-    """Nodes and values of the grid: dict(v1_star, eps_y, nu, values={name: (nv, ne, nn) array})."""
-    table = load_table() if table is None else table
-    tol = real_scalar(tol, "--tol")
+def _check_tol(tol):
+    tol = real_scalar(tol, "tol")
     if not (TOL_MIN <= tol < 1.0):
-        raise ValueError(f"--tol must be in [{TOL_MIN:g}, 1) (the grid's nodes come from a table accurate "
+        raise ValueError(f"tol must be in [{TOL_MIN:g}, 1) (the grid's nodes come from a table accurate "
                          f"to ~1e-9); got {tol!r}")
+    return tol
+
+
+def _check_table(table):
+    if table is None:
+        return load_table()
+    if not isinstance(table, Table):
+        raise TypeError(f"table must be a fastrest Table (fastrest.load_table) or None, got "
+                        f"{type(table).__name__}")
+    return table
+
+
+def _check_n_check(n_check, allow_zero=False):
+    if allow_zero and isinstance(n_check, int) and not isinstance(n_check, bool) and n_check == 0:
+        return 0
+    return check_count(n_check, "n_check", MIN_CHECK_POINTS, MAX_CHECK_POINTS)
+
+
+def grid_arrays(table=None, tol=DEFAULT_TOL):
+    """Nodes and values of the grid: dict(v1_star, eps_y, nu, values={name: (nv, ne, nn) array}).
+
+    ``table``: a :class:`fastrest.tables.Table` or None (the shipped one); ``tol`` in
+    [:data:`TOL_MIN`, 1). TypeError or ValueError naming the parameter otherwise.
+    """
+    tol = _check_tol(tol)
+    table = _check_table(table)
     d = table.data
     e_lo, e_hi, n_lo, n_hi, v_top = d.eps_lo, d.eps_hi, d.nu_lo, d.nu_hi, d.v_top
     share = tol / 3.0
@@ -71,6 +100,9 @@ def grid_arrays(table=None, tol=DEFAULT_TOL):
 
     seed = np.concatenate([np.geomspace(1.0, v_top, 41), JUMP])
     v = place_rows(along_v, seed, share, 20000, log=True, what="nodes in v1_star")
+    # the elastic range: the table's kernel gives it exactly; linear in V1* (ln V1* ends at 0)
+    elastic = place_rows(along_v, np.linspace(0.0, 1.0, 5), share, 20000, what="nodes in v1_star")
+    v = np.unique(np.concatenate([elastic, v]))
     pv = np.unique(np.concatenate([np.geomspace(1.2, v_top, 60), v[-40:]]))
     PV, PN2 = [a.ravel() for a in np.meshgrid(pv, pn, indexing="ij")]
 
@@ -85,8 +117,8 @@ def grid_arrays(table=None, tol=DEFAULT_TOL):
 
     nu = place_rows(along_n, np.linspace(n_lo, n_hi, 3), share, 20000, what="nodes in nu")
     if v.size * eps.size * nu.size > MAX_NODES:
-        raise ValueError(f"--tol = {tol!r} cannot be met within {MAX_NODES} grid nodes "
-                         f"({v.size} x {eps.size} x {nu.size}); give a larger --tol")
+        raise ValueError(f"tol = {tol!r} cannot be met within {MAX_NODES} grid nodes "
+                         f"({v.size} x {eps.size} x {nu.size}); give a larger tol")
     vals = _eval(table, v[:, None, None], eps[None, :, None], nu[None, None, :])
     vals = vals.reshape(-1, v.size, eps.size, nu.size)
     return dict(v1_star=v, eps_y=eps, nu=nu, tol=tol,
@@ -95,16 +127,18 @@ def grid_arrays(table=None, tol=DEFAULT_TOL):
 
 # --- measuring --------------------------------------------------------------------------------
 
-def _stencil(x, xq, m, brk=None):
+def _stencil(x, xq, m, breaks=()):
     """Indices and weights of the m-point Lagrange stencil of nodes x at points xq (m = 2: linear).
 
-    ``brk``: a node index j where the function jumps between x[j] and x[j + 1]: stencils of
-    points up to x[j] end at j, those of later points start at j + 1.
+    ``breaks``: pairs (j, after) of a node index j where the function jumps or kinks: stencils of
+    points up to x[j] end at j, those of later points start at ``after`` (j + 1 past a jump, j at
+    a kink).
     """
+    m = min(m, x.size)  # a coarse axis (a large tol) may have fewer nodes than the stencil
     i = np.clip(np.searchsorted(x, xq, side="right") - 1, 0, x.size - 2)
     first = i - (m // 2 - 1)
-    if brk is not None:
-        first = np.where(xq <= x[brk], np.minimum(first, brk - m + 1), np.maximum(first, brk + 1))
+    for brk, after in breaks:
+        first = np.where(xq <= x[brk], np.minimum(first, brk - m + 1), np.maximum(first, after))
     first = np.clip(first, 0, x.size - m)
     idx = first[:, None] + np.arange(m)[None, :]
     xs = x[idx]
@@ -116,37 +150,52 @@ def _stencil(x, xq, m, brk=None):
     return idx, w
 
 
+def v_coordinate(v):
+    """The V1* coordinate :func:`interpolate` is linear in: V1* - 1 up to 1 (the elastic range, from
+    V1* = 0), ln V1* above (the two meet with equal slopes at V1* = 1)."""
+    v = np.asarray(v, dtype=np.float64)
+    return np.where(v < 1.0, v - 1.0, np.log(np.maximum(v, 1.0)))
+
+
 def interpolate(grid, name, v, e, n, m=2):
-    """Tensor-product m-point Lagrange interpolation of ``grid['values'][name]`` in (ln V1*, eps_y, nu)
-    (m = 2 trilinear, m = 4 tricubic; its stencils in V1* stay on one side of the jump at
-    1.9^1.25); NaN where a stencil node is NaN."""
-    lv = np.log(grid["v1_star"])
-    j = np.flatnonzero(grid["v1_star"] == JUMP[0])
-    iv, wv = _stencil(lv, np.log(v), m, int(j[0]) if j.size and m > 2 else None)
+    """Tensor-product m-point Lagrange interpolation of ``grid['values'][name]`` in
+    (:func:`v_coordinate` (V1*), eps_y, nu) (m = 2 trilinear, m = 4 tricubic; its stencils in V1*
+    stay on one side of the kink at V1* = 1 and of the jump at 1.9^1.25); NaN where a stencil
+    node is NaN."""
+    x = grid["v1_star"]
+    breaks = []
+    if m > 2:
+        breaks = [(int(j), int(j) + shift) for at, shift in ((1.0, 0), (JUMP[0], 1)) for j in np.flatnonzero(x == at)]
+    iv, wv = _stencil(v_coordinate(x), v_coordinate(v), m, breaks)
     ie, we = _stencil(grid["eps_y"], e, m)
     jn, wn = _stencil(grid["nu"], n, m)
     f = grid["values"][name]
     out = np.zeros(v.size)
-    for a in range(m):
-        for b in range(m):
-            for c in range(m):
+    for a in range(wv.shape[1]):
+        for b in range(we.shape[1]):
+            for c in range(wn.shape[1]):
                 out += wv[:, a] * we[:, b] * wn[:, c] * f[iv[:, a], ie[:, b], jn[:, c]]
     return out
 
 
 def sample(grid, n_points, seed=2014):
-    """Random points in the model's domain over the grid: uniform in (eps_y, nu), log-uniform in
-    V1* from 1 to the material's w_m* = 425 speed."""
+    """Random points in the model's domain over the grid: uniform in (eps_y, nu); in V1*, one in
+    ten uniform in the elastic range [0, 1], the others log-uniform from 1 to the material's
+    w_m* = 425 speed."""
     rng = np.random.default_rng(seed)
     e = rng.uniform(grid["eps_y"][0], grid["eps_y"][-1], n_points)
     n = rng.uniform(grid["nu"][0], grid["nu"][-1], n_points)
     lim = np.array([v1_star_limit(a, b) for a, b in zip(e, n)])
     v = np.exp(rng.uniform(0.0, 1.0, n_points) * np.log(lim))
+    elastic = np.arange(n_points) % 10 == 0
+    v[elastic] = rng.uniform(0.0, 1.0, np.count_nonzero(elastic))
     return v, e, n
 
 
 def measure(grid, n_points=20000, seed=2014):
-    """Worst error of trilinear and tricubic interpolation against the direct solver."""
+    """Worst error of trilinear and tricubic interpolation against the direct solver at
+    ``n_points`` (in [:data:`MIN_CHECK_POINTS`, :data:`MAX_CHECK_POINTS`]) random points."""
+    n_points = check_count(n_points, "n_points", MIN_CHECK_POINTS, MAX_CHECK_POINTS)
     v, e, n = sample(grid, n_points, seed)
     names = list(grid["values"])
     nm = (len(names) - 1) // 2
@@ -174,7 +223,8 @@ def measure(grid, n_points=20000, seed=2014):
 # --- files ------------------------------------------------------------------------------------
 
 COORDS = {
-    "v1_star": ("1", "normalised impact speed V1* = V1/V_c (JGM eq 28); V1* <= 1 is elastic (e = 1)"),
+    "v1_star": ("1", "normalised impact speed V1* = V1/V_c (JGM eq 28); V1* <= 1 is elastic (e = 1, "
+                     "w_m* = V1*^0.8)"),
     "eps_y": ("1", "yield strain eps_y = Sy/E' (JGM eq 11)"),
     "nu": ("1", "Poisson's ratio of the yielding material"),
 }
@@ -201,7 +251,7 @@ def global_attrs(table, grid, report):
         "source": "fastrest table (fastrest.tables) interpolated at the grid's nodes; table: " + json.dumps(src),
         "history": f"fastrest {prov['fastrest_version']}: fastrest export grid (tol {grid['tol']:g})",
         "comment": ("NaN where the model is undefined (w_m* > 425 for that material, JGM section 3.3). "
-                    "Interpolate linearly in (ln v1_star, eps_y, nu) or in (v1_star, eps_y, nu); "
+                    "Interpolate linearly in (v1_star, eps_y, nu), or in ln v1_star above v1_star = 1; "
                     "the error is |interpolated - exact| / max(|exact|, 1)."),
         "fastrest_version": prov["fastrest_version"],
         "unloading_models": ",".join(_unloading.NAMES[:(len(grid["values"]) - 1) // 2]),
@@ -221,7 +271,9 @@ def to_xarray(table=None, tol=DEFAULT_TOL, n_check=20000):
         import xarray as xr
     except ImportError:
         raise ImportError("Table.to_xarray needs xarray: pip install fastrest[xarray]") from None
-    table = load_table() if table is None else table
+    tol = _check_tol(tol)
+    n_check = _check_n_check(n_check, allow_zero=True)
+    table = _check_table(table)
     grid = grid_arrays(table, tol)
     report = measure(grid, n_check) if n_check else None
     coords = {k: (k, grid[k], {"units": u, "long_name": ln}) for k, (u, ln) in COORDS.items()}
@@ -232,35 +284,51 @@ def to_xarray(table=None, tol=DEFAULT_TOL, n_check=20000):
     return xr.Dataset(data, coords=coords, attrs=global_attrs(table, grid, report))
 
 
+def _hdf5_image(grid, attrs):
+    """The NetCDF4/HDF5 file's bytes, built in memory: HDF5 never writes to disk (after a failed
+    write, e.g. on a full disk, h5py closing the file segfaulted)."""
+    import io
+
+    import h5py
+
+    buffer = io.BytesIO()
+    with h5py.File(buffer, "w") as f:
+        scales = {}
+        for k, (units, ln) in COORDS.items():
+            ds = f.create_dataset(k, data=grid[k].astype(np.float64))
+            ds.attrs["units"], ds.attrs["long_name"] = units, ln
+            ds.make_scale(k)
+            scales[k] = ds
+        for name, arr in grid["values"].items():
+            units, ln = _var_meta(name)
+            ds = f.create_dataset(name, data=arr, fillvalue=np.nan, chunks=True, compression="gzip",
+                                  shuffle=True)
+            ds.attrs["units"], ds.attrs["long_name"] = units, ln
+            ds.attrs["_FillValue"] = np.float64(np.nan)
+            for i, k in enumerate(("v1_star", "eps_y", "nu")):
+                ds.dims[i].attach_scale(scales[k])
+        for k, val in attrs.items():
+            f.attrs[k] = val
+    return buffer.getbuffer()
+
+
 def write_grid(path, tol=None, table_path=None, n_check=20000):
-    """Build the grid, measure it, and write a CF NetCDF4/HDF5 file (h5py, atomically).
+    """Build the grid, measure it, and write a CF NetCDF4/HDF5 file (atomically).
+
+    Every argument is checked before anything is computed or written: ``path`` must be a regular
+    file or a new path in a writable directory, ``tol`` in [:data:`TOL_MIN`, 1) (None:
+    :data:`DEFAULT_TOL`), ``n_check`` a whole number in [:data:`MIN_CHECK_POINTS`,
+    :data:`MAX_CHECK_POINTS`]. A failed write (full disk) raises OSError naming ``path`` and
+    leaves the old file intact and no temporary file.
 
     Returns (grid, report) with report: shape, variables, tol, n_check, linear, cubic, nan_fraction.
     """
-    import h5py
-
-    if n_check is not None and not (isinstance(n_check, int) and n_check >= 100):
-        raise ValueError(f"--check-points must be an integer >= 100; got {n_check!r}")
+    tol = _check_tol(DEFAULT_TOL if tol is None else tol)
+    n_check = _check_n_check(n_check)
+    path = check_target(path, "path", "the grid file")
     table = load_table(table_path)
-    grid = grid_arrays(table, DEFAULT_TOL if tol is None else tol)
+    grid = grid_arrays(table, tol)
     report = measure(grid, n_check)
-    with atomic_path(path, "--out") as tmp:
-        with h5py.File(tmp, "w", locking=False) as f:
-            scales = {}
-            for k, (units, ln) in COORDS.items():
-                ds = f.create_dataset(k, data=grid[k].astype(np.float64))
-                ds.attrs["units"], ds.attrs["long_name"] = units, ln
-                ds.make_scale(k)
-                scales[k] = ds
-            for name, arr in grid["values"].items():
-                units, ln = _var_meta(name)
-                ds = f.create_dataset(name, data=arr, fillvalue=np.nan, chunks=True, compression="gzip",
-                                      shuffle=True)
-                ds.attrs["units"], ds.attrs["long_name"] = units, ln
-                ds.attrs["_FillValue"] = np.float64(np.nan)
-                for i, k in enumerate(("v1_star", "eps_y", "nu")):
-                    ds.dims[i].attach_scale(scales[k])
-            for k, val in global_attrs(table, grid, report).items():
-                f.attrs[k] = val
+    write_files({path: _hdf5_image(grid, global_attrs(table, grid, report))}, "path", "the grid file")
     report.update(shape={k: int(grid[k].size) for k in COORDS}, variables=list(grid["values"]), tol=grid["tol"])
     return grid, report

@@ -11,6 +11,8 @@ import csv
 import io
 import json
 import math
+import os
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -19,17 +21,21 @@ from ..curve_data import build_curve_data, curve_array
 from ..direct import impact_array
 from ..limits import v1_star_limit
 from ..materials import Impact, Material
+from ..tables.file import check_path, read_bounded
 from .. import unloading as _unloading
-from ._io import atomic_path, provenance
+from ._io import check_target, provenance, write_files
 from ._placement import JUMP, interior as _interior, place_rows, scaled_error as _scaled_error
 
-__all__ = ["TOL_MIN", "MAX_ROWS", "Pair", "pair_from_options", "read_pairs", "velocity_table",
-           "write_velocity"]
+__all__ = ["TOL_MIN", "MAX_ROWS", "MAX_PAIRS", "MAX_PAIRS_BYTES", "Pair", "pair_from_options", "read_pairs",
+           "velocity_table", "write_velocity"]
 
-#: Smallest --tol: the curves that place the rows are ~1e-13 accurate, the direct solver's
+#: Smallest tol: the curves that place the rows are ~1e-13 accurate, the direct solver's
 #: Newton step tolerance is 1e-9 in ln w (its e to ~1e-12); 1e-9 keeps the check meaningful.
 TOL_MIN = 1e-9
 MAX_ROWS = 200000
+#: Most pairs in one export, and the largest pairs file read (a hostile file is refused, not read).
+MAX_PAIRS = 1000
+MAX_PAIRS_BYTES = 1 << 20
 CHECKS_PER_INTERVAL = 15
 PAIR_KEYS = ("name", "E", "nu", "Sy", "R", "rho", "mass", "flat_E", "flat_nu", "flat_Sy", "V_max")
 
@@ -42,21 +48,32 @@ def pair_from_options(**kw):
     return Pair({k: kw.get(k) for k in PAIR_KEYS})
 
 
-def read_pairs(path, option="--pairs"):
+def read_pairs(path):
     """Material pairs from a CSV file with a header row (columns of :data:`PAIR_KEYS`; ``name``,
-    ``E``, ``nu``, ``Sy``, ``R`` and ``rho`` or ``mass`` required, empty cells = not given)."""
+    ``E``, ``nu``, ``Sy``, ``R`` and ``rho`` or ``mass`` required, empty cells = not given).
+
+    The file is read as table files are (:func:`fastrest.tables.file.read_bounded`): a regular
+    file of at most :data:`MAX_PAIRS_BYTES`, never a blocking read of a FIFO or device; at most
+    :data:`MAX_PAIRS` pairs. TypeError if ``path`` is not a path; ValueError naming the file
+    otherwise.
+    """
+    data = read_bounded(path, MAX_PAIRS_BYTES, ValueError, "pairs file")
+    path = os.fspath(path)
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
-            rows = list(csv.DictReader(line for line in fh if line.strip() and not line.lstrip().startswith("#")))
-    except OSError as exc:
-        raise ValueError(f"{option}: cannot read {path!r}: {exc.strerror or exc}") from None
+        text = data.decode("utf-8")
+        if "\0" in text:
+            raise csv.Error("NUL byte")
+        rows = list(csv.DictReader(line for line in text.splitlines() if line.strip()
+                                   and not line.lstrip().startswith("#")))
     except (UnicodeDecodeError, csv.Error) as exc:
-        raise ValueError(f"{option}: {path!r} is not a CSV file ({exc})") from None
+        raise ValueError(f"{path!r} is not a CSV file ({exc})") from None
     if not rows:
-        raise ValueError(f"{option}: {path!r} holds no material pairs (a header row and one row per pair)")
+        raise ValueError(f"{path!r} holds no material pairs (a header row and one row per pair)")
+    if len(rows) > MAX_PAIRS:
+        raise ValueError(f"{path!r} holds {len(rows)} pairs; at most {MAX_PAIRS} in one export")
     unknown = set(rows[0]) - set(PAIR_KEYS)
     if unknown or None in rows[0]:
-        raise ValueError(f"{option}: unknown column(s) {sorted(map(str, unknown))} in {path!r}; "
+        raise ValueError(f"unknown column(s) {sorted(map(str, unknown))} in {path!r}; "
                          f"valid: {', '.join(PAIR_KEYS)}")
     pairs = []
     for i, r in enumerate(rows, start=2):
@@ -69,35 +86,39 @@ def read_pairs(path, option="--pairs"):
             try:
                 p[k] = float(s) if s else None
             except ValueError:
-                raise ValueError(f"{option}: line {i} of {path!r}: {k} = {s!r} is not a number") from None
+                raise ValueError(f"line {i} of {path!r}: {k} = {s!r} is not a number") from None
         pairs.append(p)
     names = [p["name"] for p in pairs]
     dup = {n for n in names if names.count(n) > 1}
     if dup:
-        raise ValueError(f"{option}: duplicate pair name(s) {sorted(dup)} in {path!r}")
+        raise ValueError(f"duplicate pair name(s) {sorted(dup)} in {path!r}")
     for n in names:
-        if not n.replace("_", "").replace("-", "").isalnum():
-            raise ValueError(f"{option}: pair name {n!r} must be letters, digits, '-' or '_' (it names files)")
+        if not _valid_name(n):
+            raise ValueError(f"pair name {n!r} in {path!r} must be letters, digits, '-' or '_' (it names files)")
     return pairs
 
 
+def _valid_name(n):
+    return isinstance(n, str) and n.replace("_", "").replace("-", "").isalnum() and n.isascii()
+
+
 def impact_of(pair, where=""):
-    """The :class:`fastrest.Impact` of a pair; ValueError naming the option and the pair."""
+    """The :class:`fastrest.Impact` of a pair; ValueError naming the key and the pair."""
     try:
         for k in ("E", "nu", "Sy", "R"):
             if pair.get(k) is None:
-                raise ValueError(f"--{k} is required")
+                raise ValueError(f"{k} is required")
         if pair.get("rho") is None and pair.get("mass") is None:
-            raise ValueError("give --rho (sphere density, kg/m^3) or --mass (kg)")
+            raise ValueError("give rho (sphere density, kg/m^3) or mass (kg)")
         sphere = Material(pair["E"], pair["nu"], pair["Sy"], rho=pair.get("rho"))
         flat = None
         if pair.get("flat_E") is not None:
             if pair.get("flat_nu") is None:
-                raise ValueError("--flat-E needs --flat-nu")
+                raise ValueError("flat_E needs flat_nu")
             flat = Material(pair["flat_E"], pair["flat_nu"],
                             pair["flat_Sy"] if pair.get("flat_Sy") is not None else math.inf)
         elif pair.get("flat_nu") is not None or pair.get("flat_Sy") is not None:
-            raise ValueError("--flat-nu and --flat-Sy need --flat-E (without it the flat is rigid)")
+            raise ValueError("flat_nu and flat_Sy need flat_E (without it the flat is rigid)")
         return Impact(sphere, pair["R"], flat=flat, mass=pair.get("mass"))
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{where}{exc}") from None
@@ -129,6 +150,14 @@ def _direct(v, eps_y, nu):
     return out
 
 
+def _check_tol(tol):
+    tol = real_scalar(tol, "tol")
+    if not (TOL_MIN <= tol < 1.0):
+        raise ValueError(f"tol must be in [{TOL_MIN:g}, 1) (absolute error of e and 1 - e^2, relative of w_m*); "
+                         f"got {tol!r}")
+    return tol
+
+
 def velocity_table(impact, V_max, tol):
     """Rows and measured errors for one :class:`fastrest.Impact` up to V_max (m/s).
 
@@ -136,15 +165,14 @@ def velocity_table(impact, V_max, tol):
     (worst error of linear interpolation against the direct solver per quantity, at
     :data:`CHECKS_PER_INTERVAL` points inside every interval), ``v1_star_max``.
     """
-    tol = real_scalar(tol, "--tol")
-    if not (TOL_MIN <= tol < 1.0):
-        raise ValueError(f"--tol must be in [{TOL_MIN:g}, 1) (absolute error of e and 1 - e^2, relative of w_m*); "
-                         f"got {tol!r}")
-    V_max = real_scalar(V_max, "--V-max")
+    if not isinstance(impact, Impact):
+        raise TypeError(f"impact must be a fastrest.Impact, got {impact!r} ({type(impact).__name__})")
+    tol = _check_tol(tol)
+    V_max = real_scalar(V_max, "V_max")
     Vc = impact.V_c
     lim = v1_star_limit(impact.eps_y, impact.nu) * Vc
     if not (V_max > 0 and V_max <= lim * (1 + 1e-12)):
-        raise ValueError(f"--V-max = {V_max!r} m/s is outside (0, {lim:.6g}] m/s: the model ends at "
+        raise ValueError(f"V_max = {V_max!r} m/s is outside (0, {lim:.6g}] m/s: the model ends at "
                          f"w_m* = 425 for this pair (V_c = {Vc:.6g} m/s)")
     v_top = min(V_max / Vc, v1_star_limit(impact.eps_y, impact.nu))
     curves = _curves(impact.eps_y, impact.nu, v_top)
@@ -212,39 +240,65 @@ def json_obj(pair, res):
     return out
 
 
+def _paths(out, pairs):
+    """The files ``write_velocity`` writes: out.csv (one pair) or out_<name>.csv, and out.json."""
+    base = check_path(out, "out")
+    for ext in (".csv", ".json"):
+        if base.endswith(ext):
+            base = base[: -len(ext)]
+    if os.path.basename(base) in ("", ".", ".."):
+        raise ValueError(f"out = {out!r} names no file (OUT.csv and OUT.json are written)")
+    csvs = [base + ".csv"] if len(pairs) == 1 else [f"{base}_{p['name']}.csv" for p in pairs]
+    return csvs, base + ".json"
+
+
 def write_velocity(out, pairs, tol, V_max=None):
     """Compute every pair's table, then write ``out``.csv (one pair) or ``out``_<name>.csv (several)
     and ``out``.json (all pairs); nothing is written unless every pair succeeds. Returns
-    (list of (pair, result), list of paths)."""
+    (list of (pair, result), list of paths).
+
+    Checked before anything is computed: ``out`` (every file it names must be a regular file or a
+    new path in a writable directory), ``pairs`` (1 to :data:`MAX_PAIRS` mappings with distinct
+    file-safe names), ``tol`` and ``V_max``. A failed write (full disk) raises OSError naming the
+    file; no file is left half written.
+    """
+    if isinstance(pairs, Mapping) or not isinstance(pairs, (list, tuple)):
+        raise TypeError(f"pairs must be a list of pair mappings (read_pairs, pair_from_options), got "
+                        f"{type(pairs).__name__}")
+    if not 1 <= len(pairs) <= MAX_PAIRS:
+        raise ValueError(f"pairs must hold 1 to {MAX_PAIRS} pairs; got {len(pairs)}")
+    for k, p in enumerate(pairs):
+        if not isinstance(p, Mapping):
+            raise TypeError(f"pairs[{k}] must be a mapping of {', '.join(PAIR_KEYS)}, got {type(p).__name__}")
+        if len(pairs) > 1 and not _valid_name(p.get("name")):
+            raise ValueError(f"pairs[{k}]: name {p.get('name')!r} must be letters, digits, '-' or '_' "
+                             "(it names a file)")
+    names = [p.get("name") for p in pairs]
+    if len(pairs) > 1 and len(set(names)) < len(names):
+        raise ValueError(f"pairs: duplicate pair names {sorted({n for n in names if names.count(n) > 1})}")
+    tol = _check_tol(tol)
+    if V_max is not None:
+        V_max = real_scalar(V_max, "V_max")
+    csvs, json_path = _paths(out, pairs)
+    for path in csvs + [json_path]:
+        check_target(path, "out", "the output file")
     results = []
     for p in pairs:
-        where = f"--pairs, pair {p.get('name')!r}: " if len(pairs) > 1 or p.get("name") else ""
+        where = f"pair {p.get('name')!r}: " if len(pairs) > 1 or p.get("name") else ""
         imp = impact_of(p, where)
         vm = p.get("V_max") if p.get("V_max") is not None else V_max
         if vm is None:
-            raise ValueError(f"{where}--V-max is required (the largest impact speed, m/s)")
+            raise ValueError(f"{where}V_max is required (the largest impact speed, m/s)")
         try:
             results.append((p, velocity_table(imp, vm, tol)))
         except ValueError as exc:
             raise ValueError(f"{where}{exc}") from None
-    base = str(out)
-    for ext in (".csv", ".json"):
-        if base.endswith(ext):
-            base = base[: -len(ext)]
-    files = {}
+    files = {path: csv_text(p, r) for path, (p, r) in zip(csvs, results)}
     if len(results) == 1:
-        files[base + ".csv"] = csv_text(*results[0])
         doc = json_obj(*results[0])
     else:
-        for p, r in results:
-            files[f"{base}_{p['name']}.csv"] = csv_text(p, r)
         doc = {"pairs": {p["name"]: json_obj(p, r) for p, r in results}}
-    files[base + ".json"] = json.dumps(doc, indent=1) + "\n"
+    files[json_path] = json.dumps(doc, indent=1) + "\n"
     # every temporary file is written before any is renamed into place
-    from contextlib import ExitStack
-    with ExitStack() as stack:
-        for path, text in files.items():
-            tmp = stack.enter_context(atomic_path(path, "--out"))
-            with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
-                fh.write(text)
+    write_files(files, "out", "the output file")
     return results, list(files)

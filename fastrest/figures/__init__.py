@@ -17,15 +17,19 @@ Modules: :mod:`~fastrest.figures.jgm` (Figs 2-4, the model's own quantities),
 :mod:`~fastrest.figures.kharaz` (Figs 7-8, alumina spheres on aluminium and steel: the masses and
 moduli used there, which the paper does not give in full, are documented in that module).
 """
+import io
+import os
 from pathlib import Path
 
+from .._validation import check_count
+from ..tables.file import check_target, check_target_dir, replace_files
 from ._common import EPS_Y_SERIES, TABLE1_EPS_Y, TABLE1_NU
 from .comparisons import figure5, figure6
 from .jgm import figure2, figure3, figure4
 from .kharaz import ALUMINA, ALUMINA_DENSITY, ALUMINIUM_FLAT, KHARAZ_RADIUS, STEEL_FLAT, figure7, figure8, kharaz_impact
 
 __all__ = ["figure2", "figure3", "figure4", "figure5", "figure6", "figure7", "figure8", "kharaz_impact",
-           "FIGURES", "write_all", "ALUMINA_DENSITY", "ALUMINA", "ALUMINIUM_FLAT", "STEEL_FLAT", "KHARAZ_RADIUS",
+           "FIGURES", "MAX_DPI", "write_all", "ALUMINA_DENSITY", "ALUMINA", "ALUMINIUM_FLAT", "STEEL_FLAT", "KHARAZ_RADIUS",
            "TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES"]
 
 #: Output file stem -> figure function, in the paper's order.
@@ -38,6 +42,8 @@ FIGURES = {
     "fig7_alumina_on_aluminium": figure7,
     "fig8_alumina_on_steel": figure8,
 }
+#: Largest resolution of :func:`write_all`: a 6.4 x 4.8 in figure is then 7680 x 5760 pixels.
+MAX_DPI = 1200
 
 
 def write_all(out_dir, *, dpi=150):
@@ -52,7 +58,7 @@ def write_all(out_dir, *, dpi=150):
     out_dir : str or os.PathLike
         Directory to write into.
     dpi : int
-        Resolution of the PNG files (dots per inch), keyword-only.
+        Resolution of the PNG files (dots per inch), 1 to :data:`MAX_DPI`, keyword-only.
 
     Returns
     -------
@@ -63,12 +69,17 @@ def write_all(out_dir, *, dpi=150):
     ------
     ImportError
         Matplotlib is not installed (``pip install fastrest[plot]``).
+    TypeError, ValueError
+        ``dpi`` not a whole number in [1, :data:`MAX_DPI`]; ``out_dir`` not a path.
     OSError
-        ``out_dir`` cannot be created or written.
+        ``out_dir`` cannot be created or written, or a figure's file exists and is not a regular
+        file (a directory, FIFO or device is never replaced); naming the path.
 
     Notes
     -----
-    JGM Figs 2-8 (Fig 1 is a sketch); ``fastrest figures --out DIR`` calls this.
+    JGM Figs 2-8 (Fig 1 is a sketch); ``fastrest figures --out DIR`` calls this. Every argument
+    and target is checked, and every figure drawn in memory, before anything is created; the
+    files are then written atomically (:func:`fastrest.tables.file.replace_files`).
 
     Examples
     --------
@@ -77,12 +88,21 @@ def write_all(out_dir, *, dpi=150):
     >>> [p.name for p in write_all(tempfile.mkdtemp(), dpi=20)][:2]
     ['fig2_energy.png', 'fig3_max_interference.png']
     """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for stem, fn in FIGURES.items():
+    dpi = check_count(dpi, "dpi", 1, MAX_DPI)
+    out = Path(check_target_dir(out_dir, "out_dir", "the figures directory"))
+    paths = [out / f"{stem}.png" for stem in FIGURES]
+    if out.is_dir():
+        for p in paths:
+            check_target(p, "out_dir", "the figure")
+    images = {}
+    for p, fn in zip(paths, FIGURES.values()):
         fig, _ = fn()
-        p = out / f"{stem}.png"
-        fig.savefig(p, dpi=dpi, metadata={"Software": None})
-        paths.append(p)
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
+        images[os.fspath(p)] = buf.getbuffer()
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OSError(exc.errno, f"cannot create the figures directory {os.fspath(out)!r}: {exc.strerror}") from None
+    replace_files(images, "out_dir", "the figure")
     return paths

@@ -28,7 +28,6 @@ import hashlib
 import io
 import json
 import os
-import stat
 
 import h5py
 import numpy as np
@@ -158,7 +157,6 @@ def write_table(path, axes, datasets, attrs):
                  fastrest_version=__version__, checksum=checksum_arrays(arrays),
                  checksum_algorithm=CHECKSUM_ALGORITHM)
 
-    mode = _file_mode(path)
     # The whole file is built in memory and written by fastrest.tables.file: HDF5 never sees a write error
     # (h5py closing a file after a failed write, e.g. on a full disk, segfaulted).
     buffer = io.BytesIO()
@@ -175,7 +173,7 @@ def write_table(path, axes, datasets, attrs):
                 dset.dims[i].attach_scale(scales[axis])
         for key in sorted(attrs):
             f.attrs[key] = attrs[key]
-    digest = write_atomic(path, buffer.getbuffer(), mode)
+    digest = write_atomic(path, buffer.getbuffer())
     trust(digest)  # bytes this process made: parsed in-process when read back
     return digest
 
@@ -339,14 +337,3 @@ def write_variable(f, name, values, units, long_name):
     dset.attrs["units"] = units
     dset.attrs["long_name"] = long_name
     return dset
-
-
-def _file_mode(path):
-    """Permissions for the new file: those of the file it replaces, else 0o666 - umask."""
-    # mkstemp creates files readable by the owner only; a shared table must not be.
-    try:
-        return stat.S_IMODE(os.stat(path).st_mode)
-    except FileNotFoundError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask

@@ -5,7 +5,7 @@ import warnings
 from pathlib import Path
 
 from .._validation import real_scalar
-from .file import TableFileError, check_target
+from .file import TableFileError, check_path, check_target, replace_files
 from .generation import generate
 from .grid import grid_key, normalise_grid
 from .schema import read_generated, write_generated
@@ -122,8 +122,9 @@ def read(path):
     >>> read(default_table_path()).grid["n_nu"]
     8
     """
+    path = check_path(path)
     gen, attrs = read_generated(path)
-    return Table(gen, attrs=attrs, path=str(path))
+    return Table(gen, attrs=attrs, path=path)
 
 
 def forget(path=None):
@@ -142,7 +143,7 @@ def forget(path=None):
     >>> fastrest.load_table() is t
     False
     """
-    target = Path(path if path is not None else _HERE / "default.h5").resolve()
+    target = Path(_resolved(path) if path is not None else _HERE / "default.h5").resolve()
     LOADED.pop(str(target), None)
     if target == (_HERE / "default.h5").resolve():
         LOADED.pop(None, None)
@@ -154,6 +155,17 @@ def _identity(path):
     except OSError:
         return None
     return st.st_dev, st.st_ino, st.st_mtime_ns, st.st_size
+
+
+def _resolved(path):
+    """The registry key of a table file: its resolved path; TableFileError if it has none."""
+    path = check_path(path)
+    if "\0" in path:
+        raise TableFileError(f"{path!r}: a file name cannot hold a NUL byte")
+    try:
+        return str(Path(path).resolve())
+    except (OSError, RuntimeError) as exc:  # RuntimeError: a symbolic link loop (Python < 3.13)
+        raise TableFileError(f"{path}: cannot resolve the table file's path ({exc})") from None
 
 
 def load_table(path=None, tol=None):
@@ -179,7 +191,10 @@ def load_table(path=None, tol=None):
     ------
     TableFileError
         The file is missing, truncated, corrupted (digest, checksum), not a fastrest table, or of an
-        older or newer format version; the message names the file and what is wrong.
+        older or newer format version, or its name cannot be resolved (a NUL byte, a loop of
+        symbolic links); the message names the file and what is wrong.
+    TypeError
+        ``path`` is not a str or path-like object.
     ValueError
         ``tol`` outside [1e-14, 1).
 
@@ -199,7 +214,7 @@ def load_table(path=None, tol=None):
     if path is None:
         key, ident = None, None
     else:
-        key = str(Path(path).resolve())
+        key = _resolved(path)
         ident = _identity(key)
     entry = LOADED.get(key)
     if entry is None or entry[0] != ident:
@@ -244,10 +259,11 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
     ------
     TypeError, ValueError
         A bad grid or ``tol``; ``tol`` not reached in the allowed refinements (the message names the
-        error reached and what to change).
+        error reached and what to change); a ``path`` that is not a file name.
     OSError
-        The file cannot be written (a directory, a read-only or full file system), naming the file;
-        checked before the generation where it can be; an existing file is then unchanged.
+        The file cannot be written (a directory, FIFO or device: never replaced; a read-only or
+        full file system), naming the file; checked before the generation where it can be; an
+        existing file is then unchanged.
 
     Warns
     -----
@@ -278,13 +294,12 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
         tol = _check_tol(tol)
     if path is None:
         path = cache_dir() / f"{grid_key(g)}.h5"
-    path = Path(path)
+    path = Path(check_target(path, "path", "the table file", parents=True))  # before the long build
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise OSError(exc.errno, f"cannot create the directory of table file {str(path)!r}: "
                                  f"{exc.strerror}") from None
-    check_target(path)
     if tol is not None:
         gen, table, errors, _ = error.build_to_tolerance(g, tol, progress=progress)
     else:
@@ -310,10 +325,7 @@ def _record_default_digest(digest):
             "only while its digest is this one; any other table file is parsed in a check process first\n"
             '(fastrest.tables.probe)."""\n'
             f"#: Hex digest (docs/table-format.md, section 1.0).\nSHA256 = {digest!r}\n")
-    target = _HERE / "_default_digest.py"
-    tmp = target.with_suffix(".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, target)
+    replace_files({_HERE / "_default_digest.py": text.encode("ascii")}, what="the default table's digest file")
 
 
 def cached_table(grid=None, progress=None, tol=None):
@@ -338,7 +350,8 @@ def cached_table(grid=None, progress=None, tol=None):
     TypeError, ValueError
         A bad grid or ``tol``.
     OSError
-        The cache file cannot be written (e.g. a full disk), naming the file.
+        The cache file cannot be written (e.g. a full disk), or a directory, FIFO or device stands
+        in its place (never replaced), naming the file.
 
     Warns
     -----
@@ -365,9 +378,9 @@ def cached_table(grid=None, progress=None, tol=None):
         try:
             return load_table(path, tol=tol)
         except TableFileError as exc:
+            # a FIFO, device or directory in the file's place is refused (OSError), never replaced
+            check_target(path, "grid", "the cached table")
             # a damaged cache entry is rebuilt, not re-raised on every call
             warnings.warn(f"rebuilding the cached table: {exc}", RuntimeWarning, stacklevel=2)
-            if not path.is_file() and not path.is_dir():
-                path.unlink()  # a FIFO, device or link to one in the cache: a table never replaces those
     build(path, g, progress=progress, tol=tol)
     return load_table(path, tol=tol)
