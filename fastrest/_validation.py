@@ -13,7 +13,7 @@ import numpy as np
 
 __all__ = ["EPS_Y_VALIDATED", "NU_VALIDATED", "OMEGA_M_STAR_MAX", "EDGE_TOL", "OMEGA_STAR_SWITCH",
            "ValidityWarning", "ExtrapolationWarning", "as_float_array", "real_scalar", "check_bool",
-           "check_count", "broadcast_named", "broadcast_inputs", "shaped", "check_finite_result",
+           "check_count", "short_repr", "broadcast_named", "broadcast_inputs", "kernel_array", "shaped", "check_finite_result",
            "check_finite_positive", "check_nu", "check_eps_y", "check_velocity", "warn",
            "warn_if_outside_validated"]
 
@@ -102,6 +102,10 @@ def _short(x):
     return r if len(r) <= 80 else r[:77] + "..."
 
 
+#: ``repr(x)``, cut at 80 characters: a value quoted in an error message.
+short_repr = _short
+
+
 def as_float_array(x, name):
     """Return ``x`` as a float64 ndarray.
 
@@ -180,13 +184,30 @@ def broadcast_named(*named):
                          "scalar, or arrays of equal or broadcastable shapes)") from None
 
 
+def kernel_array(a, dtype=np.float64):
+    """``a`` as the array every jit array kernel is compiled for: flat (1-d), C-contiguous, aligned,
+    writeable, native-endian ``dtype``.
+
+    The one place the Python layer shapes arrays for Numba: a read-only (memory-mapped, xarray),
+    strided, unaligned or byte-swapped input would otherwise be a new Numba type and compile the
+    kernel again (seconds) although warm-up compiled it. Copies only when ``a`` is not already
+    such an array (a read-only array is copied: one memcpy, ~1 ns per element).
+    """
+    if type(a) is np.ndarray and a.dtype == dtype:
+        f = a.flags
+        if f.c_contiguous and f.writeable and f.aligned:
+            return a.ravel()  # a view, no copy
+    return np.require(a, dtype, ("C", "A", "W")).ravel()
+
+
 def broadcast_inputs(*named):
-    """Broadcast (array, name) pairs to flat contiguous float64 arrays; return (flat arrays, shape)."""
+    """Broadcast (array, name) pairs to flat float64 arrays (:func:`kernel_array`); return
+    (flat arrays, shape)."""
     arrays = [as_float_array(a, n) for a, n in named]
     shape = broadcast_named(*zip(arrays, (n for _, n in named)))
     # broadcast_to + copy, not broadcast_arrays: its views warn (FutureWarning) when Numba reads
     # their writeable flag
-    return [np.ascontiguousarray(a).ravel() if a.shape == shape else np.broadcast_to(a, shape).copy().ravel()
+    return [kernel_array(a) if a.shape == shape else np.broadcast_to(a, shape).copy().ravel()
             for a in arrays], shape
 
 

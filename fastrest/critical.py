@@ -20,6 +20,23 @@ __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
            "critical_interference", "critical_force", "critical_area", "critical_energy",
            "critical_velocity", "CriticalScales", "critical_scales"]
 
+# The jit NaN contract (docs/architecture.md): every function here returns NaN outside its domain
+# (an input not > 0 where it must be, a division by zero, a result that is not finite) and never
+# raises; integers and float32 are taken as float64 (converted once, at the top). The guards are
+# comparisons only: inside the domain the arithmetic, hence every number, is unchanged.
+
+
+@jit
+def _finite(x):
+    """``x`` if it is finite, NaN otherwise (a result that overflowed lies outside the domain)."""
+    return x if abs(x) < math.inf else math.nan
+
+
+@jit
+def _positive(a, b, c, d):
+    """True if all four are > 0 (False for NaN)."""
+    return a > 0.0 and b > 0.0 and c > 0.0 and d > 0.0
+
 
 @jit
 def c_of_nu(nu):
@@ -72,9 +89,9 @@ def effective_modulus(E1, nu1, E2, nu2):
 
     Notes
     -----
-    JGM section 2.1 (the equivalent sphere on a rigid flat). A compiled formula with no input
-    checks: invalid moduli give a meaningless number, not NaN. :class:`fastrest.Impact` validates
-    its materials first; :func:`critical_scales` returns NaN for invalid input.
+    JGM section 2.1 (the equivalent sphere on a rigid flat). A jit function: NaN (never an
+    exception) for a modulus not > 0, 1/E' not > 0 (nu > 1, or both bodies rigid) or a result
+    that overflows; it does not check nu. :class:`fastrest.Impact` validates its materials first.
 
     Examples
     --------
@@ -83,10 +100,16 @@ def effective_modulus(E1, nu1, E2, nu2):
     >>> round(effective_modulus(200e9, 0.33, math.inf, 0.0) / 1e9, 4)  # GPa, rigid flat
     224.4417
     """
+    E1, nu1, E2, nu2 = np.float64(E1), np.float64(nu1), np.float64(E2), np.float64(nu2)
+    if not (E1 > 0.0 and E2 > 0.0):
+        return math.nan
     inv = (1.0 - nu1**2) / E1
     if E2 < math.inf:
         inv += (1.0 - nu2**2) / E2
-    return 1.0 / inv
+    if not inv > 0.0:  # nu > 1, or both bodies rigid
+        return math.nan
+    E_eff = 1.0 / inv
+    return E_eff if E_eff > 0.0 and E_eff < math.inf else math.nan  # 0: 1/E' overflowed
 
 
 @jit
@@ -107,8 +130,8 @@ def effective_radius(R1, R2):
 
     Notes
     -----
-    JGM section 2.1. A compiled formula with no input checks (:func:`critical_scales` returns NaN
-    for invalid input; :class:`fastrest.Impact` raises).
+    JGM section 2.1. A jit function: NaN (never an exception) for a radius not > 0 or a result
+    that overflows (:class:`fastrest.Impact` raises).
 
     Examples
     --------
@@ -117,7 +140,10 @@ def effective_radius(R1, R2):
     >>> effective_radius(0.01, math.inf), round(effective_radius(0.01, 0.02), 9)
     (0.01, 0.006666667)
     """
-    return R1 if R2 == math.inf else R1 * R2 / (R1 + R2)
+    R1, R2 = np.float64(R1), np.float64(R2)
+    if not (R1 > 0.0 and R2 > 0.0):
+        return math.nan
+    return _finite(R1 if R2 == math.inf else R1 * R2 / (R1 + R2))
 
 
 @jit
@@ -139,7 +165,8 @@ def effective_mass(m1, m2):
     Notes
     -----
     The standard two-body reduction (JGM use the sphere's mass against a fixed flat and do not
-    state the two-sphere case; see docs/model.md section 1). No input checks.
+    state the two-sphere case; see docs/model.md section 1). NaN for a mass not > 0 or a result
+    that overflows (a jit function: it never raises).
 
     Examples
     --------
@@ -148,7 +175,10 @@ def effective_mass(m1, m2):
     >>> effective_mass(0.0327, math.inf), effective_mass(1.0, 3.0)
     (0.0327, 0.75)
     """
-    return m1 if m2 == math.inf else m1 * m2 / (m1 + m2)
+    m1, m2 = np.float64(m1), np.float64(m2)
+    if not (m1 > 0.0 and m2 > 0.0):
+        return math.nan
+    return _finite(m1 if m2 == math.inf else m1 * m2 / (m1 + m2))
 
 
 @jit
@@ -173,7 +203,8 @@ def critical_interference(C, Sy, E_eff, R):
 
     Notes
     -----
-    JGM eq (4). No input checks (see :func:`critical_scales`). JGM Table 1 prints 1.335 um for
+    JGM eq (4). NaN unless C, Sy, E', R > 0, and where the result overflows (a jit function: it
+    never raises; see :func:`critical_scales`). JGM Table 1 prints 1.335 um for
     these inputs, smaller by the factor (1 - nu^2)^2; fastrest implements the equation as printed
     (docs/model.md section 6).
 
@@ -184,7 +215,10 @@ def critical_interference(C, Sy, E_eff, R):
     >>> round(critical_interference(c_of_nu(0.33), 1.12e9, E_eff, 0.01) * 1e6, 4)  # um
     1.6748
     """
-    return (math.pi * C * Sy / (2.0 * E_eff)) ** 2 * R
+    C, Sy, E_eff, R = np.float64(C), np.float64(Sy), np.float64(E_eff), np.float64(R)
+    if not _positive(C, Sy, E_eff, R):
+        return math.nan
+    return _finite((math.pi * C * Sy / (2.0 * E_eff)) ** 2 * R)
 
 
 @jit
@@ -209,8 +243,8 @@ def critical_force(C, Sy, E_eff, R):
 
     Notes
     -----
-    JGM eq (6), equal to (4/3) E' sqrt(R) omega_c^1.5. No input checks (see
-    :func:`critical_scales`).
+    JGM eq (6), equal to (4/3) E' sqrt(R) omega_c^1.5. NaN unless C, Sy, E', R > 0, and where
+    the result overflows (a jit function: it never raises; see :func:`critical_scales`).
 
     Examples
     --------
@@ -218,7 +252,10 @@ def critical_force(C, Sy, E_eff, R):
     >>> round(critical_force(c_of_nu(0.33), 1.12e9, 200e9 / (1 - 0.33**2), 0.01), 3)
     64.863
     """
-    return 4.0 / 3.0 * (R / E_eff) ** 2 * (math.pi * C * Sy / 2.0) ** 3
+    C, Sy, E_eff, R = np.float64(C), np.float64(Sy), np.float64(E_eff), np.float64(R)
+    if not _positive(C, Sy, E_eff, R):
+        return math.nan
+    return _finite(4.0 / 3.0 * (R / E_eff) ** 2 * (math.pi * C * Sy / 2.0) ** 3)
 
 
 @jit
@@ -243,7 +280,8 @@ def critical_area(C, Sy, E_eff, R):
 
     Notes
     -----
-    JGM eq (7). No input checks (see :func:`critical_scales`).
+    JGM eq (7). NaN unless C, Sy, E', R > 0, and where the result overflows (a jit function: it
+    never raises; see :func:`critical_scales`).
 
     Examples
     --------
@@ -251,7 +289,10 @@ def critical_area(C, Sy, E_eff, R):
     >>> round(critical_area(c_of_nu(0.33), 1.12e9, 200e9 / (1 - 0.33**2), 0.01) * 1e6, 5)  # mm^2
     0.05262
     """
-    return math.pi**3 * (C * Sy * R / (2.0 * E_eff)) ** 2
+    C, Sy, E_eff, R = np.float64(C), np.float64(Sy), np.float64(E_eff), np.float64(R)
+    if not _positive(C, Sy, E_eff, R):
+        return math.nan
+    return _finite(math.pi**3 * (C * Sy * R / (2.0 * E_eff)) ** 2)
 
 
 @jit
@@ -276,8 +317,9 @@ def critical_energy(C, Sy, E_eff, R):
 
     Notes
     -----
-    JGM eq (23) (the Hertz energy (8/15) E' sqrt(R) omega_c^2.5, eqs 17-21). No input checks (see
-    :func:`critical_scales`).
+    JGM eq (23) (the Hertz energy (8/15) E' sqrt(R) omega_c^2.5, eqs 17-21). NaN unless C, Sy, E',
+    R > 0, where E'^4 underflows and where the result overflows (a jit function: it never raises;
+    see :func:`critical_scales`).
 
     Examples
     --------
@@ -285,7 +327,13 @@ def critical_energy(C, Sy, E_eff, R):
     >>> round(critical_energy(c_of_nu(0.33), 1.12e9, 200e9 / (1 - 0.33**2), 0.01) * 1e6, 3)  # uJ
     43.454
     """
-    return (math.pi * C * Sy) ** 5 * R**3 / (60.0 * E_eff**4)
+    C, Sy, E_eff, R = np.float64(C), np.float64(Sy), np.float64(E_eff), np.float64(R)
+    if not _positive(C, Sy, E_eff, R):
+        return math.nan
+    den = 60.0 * E_eff**4
+    if not den > 0.0:  # E'^4 underflows
+        return math.nan
+    return _finite((math.pi * C * Sy) ** 5 * R**3 / den)
 
 
 @jit
@@ -302,7 +350,8 @@ def critical_velocity(U_c, mass):
     Returns
     -------
     float
-        V_c (m/s); NaN for U_c < 0 (the square root of a negative number).
+        V_c (m/s); NaN for U_c < 0, a mass not > 0, or a result that overflows (a jit function:
+        it never raises).
 
     Notes
     -----
@@ -314,7 +363,10 @@ def critical_velocity(U_c, mass):
     >>> round(critical_velocity(4.3454e-5, 0.0327), 5)  # JGM Table 1's mass
     0.05155
     """
-    return math.sqrt(2.0 * U_c / mass)
+    U_c, mass = np.float64(U_c), np.float64(mass)
+    if not (U_c >= 0.0 and mass > 0.0):
+        return math.nan
+    return _finite(math.sqrt(2.0 * U_c / mass))
 
 
 CriticalScales = namedtuple("CriticalScales", ["E_eff", "R_eff", "mass", "nu", "Sy", "C", "eps_y",
@@ -373,8 +425,10 @@ def critical_scales(E1, nu1, Sy1, R1, m1, E2, nu2, Sy2, R2, m2):
     -------
     CriticalScales
         The body with the smaller C(nu) Sy yields first and supplies nu, Sy, C (JGM after eq 5).
-        All fields NaN if neither body can yield or an input is not finite and positive where it
-        must be (the Python :class:`fastrest.Impact` raises instead).
+        All fields NaN if neither body can yield, an input is not finite and positive where it
+        must be, or a scale (E', R', mass, eps_y, omega_c, P_c, A_c, U_c, V_c) is not a finite,
+        normal double (E1 = 1e-320 Pa, R1 = 1e300 m): the Python :class:`fastrest.Impact` raises
+        instead. Integers and float32 are taken as float64.
 
     Notes
     -----
@@ -398,6 +452,8 @@ def critical_scales(E1, nu1, Sy1, R1, m1, E2, nu2, Sy2, R2, m2):
     True
     """
     nan = math.nan
+    E1, nu1, Sy1, R1, m1 = np.float64(E1), np.float64(nu1), np.float64(Sy1), np.float64(R1), np.float64(m1)
+    E2, nu2, Sy2, R2, m2 = np.float64(E2), np.float64(nu2), np.float64(Sy2), np.float64(R2), np.float64(m2)
     ok = (E1 > 0.0 and R1 > 0.0 and m1 > 0.0 and Sy1 > 0.0 and E2 > 0.0 and R2 > 0.0
           and m2 > 0.0 and Sy2 > 0.0 and nu1 >= 0.0 and nu1 < 0.5 and nu2 >= 0.0 and nu2 < 0.5
           and E1 < math.inf and R1 < math.inf and m1 < math.inf)
@@ -412,7 +468,18 @@ def critical_scales(E1, nu1, Sy1, R1, m1, E2, nu2, Sy2, R2, m2):
     E_eff = effective_modulus(E1, nu1, E2, nu2)
     R = effective_radius(R1, R2)
     m = effective_mass(m1, m2)
+    if not (E_eff > 0.0 and R > 0.0 and m > 0.0):  # NaN, or underflowed to 0 (E1 = 1e-320)
+        return CriticalScales(nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan)
     U_c = critical_energy(C, Sy, E_eff, R)
-    return CriticalScales(E_eff, R, m, nu, Sy, C, Sy / E_eff, critical_interference(C, Sy, E_eff, R),
-                          critical_force(C, Sy, E_eff, R), critical_area(C, Sy, E_eff, R), U_c,
-                          critical_velocity(U_c, m))
+    s = CriticalScales(E_eff, R, m, nu, Sy, C, Sy / E_eff, critical_interference(C, Sy, E_eff, R),
+                       critical_force(C, Sy, E_eff, R), critical_area(C, Sy, E_eff, R), U_c,
+                       critical_velocity(U_c, m))
+    # every scale the law divides by must be a finite, normal double (as :class:`fastrest.Impact`
+    # requires): E1 = 1e-320 or R1 = 1e300 lie outside double precision
+    tiny = 2.2250738585072014e-308
+    if not (s.E_eff >= tiny and s.R_eff >= tiny and s.mass >= tiny and s.eps_y >= tiny and s.omega_c >= tiny
+            and s.P_c >= tiny and s.A_c >= tiny and s.U_c >= tiny and s.V_c >= tiny
+            and s.E_eff < math.inf and s.omega_c < math.inf and s.P_c < math.inf and s.A_c < math.inf
+            and s.U_c < math.inf and s.V_c < math.inf and s.eps_y < math.inf):
+        return CriticalScales(nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan)
+    return s

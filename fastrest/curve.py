@@ -25,7 +25,7 @@ import numpy as np
 
 from ._jit import compiled_entry, jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool, check_eps_y, check_nu,
-                          check_velocity, real_scalar, warn, warn_if_outside_validated)
+                          check_velocity, kernel_array, real_scalar, warn, warn_if_outside_validated)
 from .curve_data import build_curve_data, curve_array, curve_value
 from .fastpath import fast_scalar
 from .limits import v1_star_limit
@@ -205,7 +205,7 @@ class Curve:
 
     def _eval(self, what, v):
         a = as_float_array(v, "v1_star")
-        flat = np.ascontiguousarray(a).ravel()
+        flat = kernel_array(a)
         out = np.empty(flat.size)
         curve_array(self.data, what, flat, out)
         if np.isnan(out).any():

@@ -93,7 +93,8 @@ class Impact:
     """
 
     def __init__(self, sphere, R, flat=None, mass=None):
-        self._init(sphere, real_scalar(R, "R"), flat, None, mass)
+        self._init(sphere, real_scalar(R, "R"), flat, None, mass,
+                   names=("sphere", "flat", "R", None, "mass" if mass is not None else None))
 
     @classmethod
     def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
@@ -142,11 +143,16 @@ class Impact:
         check_finite_positive(R2, "R2", "(m)")
         m1 = _sphere_mass(sphere1, R1, mass1, "mass1", "R1")
         m2 = _sphere_mass(sphere2, R2, mass2, "mass2", "R2")
+        m = effective_mass(m1, m2)
+        if not (math.isfinite(m) and m >= sys.float_info.min):
+            raise ValueError(f"the reduced mass of mass1 = {m1!r} kg and mass2 = {m2!r} kg is not a finite, normal "
+                             "double: check the units (kg)")
         self = cls.__new__(cls)
-        self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), effective_mass(m1, m2))
+        self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), m,
+                   names=("sphere1", "sphere2", "R1", "R2", "mass1" if m1 <= m2 else "mass2"))
         return self
 
-    def _init(self, sphere, R1, other, R2, mass):
+    def _init(self, sphere, R1, other, R2, mass, names):
         if not isinstance(sphere, Material):
             raise TypeError(f"sphere must be a fastrest.Material, got {type(sphere).__name__}")
         if other is not None and not isinstance(other, Material):
@@ -164,25 +170,23 @@ class Impact:
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
-        self._check_scales()
+        self._check_scales(sphere, R1, other, R2, names)
 
-    def _check_scales(self):
+    def _check_scales(self, sphere, R1, other, R2, names):
         """Every scale the model divides by must be a finite, normal float: inputs far outside any
-        physical range (R = 1e300 m, E = 1e70 Pa) are refused here, not by an OverflowError or a
-        NaN later."""
-        try:
-            vals = self.critical_values()
-        except (OverflowError, ZeroDivisionError, ValueError) as exc:
-            vals = {"error": exc}
+        physical range (R = 1e300 m, E = 1e-300 Pa) are refused here with a ValueError naming the
+        parameters (``names``: the caller's names of sphere, other, R1, R2 and the mass, None for a
+        mass computed from rho), not by an OverflowError or a NaN later."""
+        vals = self.critical_values()
         for k, v in vals.items():
             if k == "nu":
                 continue
             if not (isinstance(v, float) and math.isfinite(v) and v >= sys.float_info.min):
+                culprits = _culprits(sphere, R1, other, R2, self.yielding, self.mass, names)
                 raise ValueError(
-                    f"this impact's {k} = {v!r} is not a finite, normal double: E, Sy, R and the mass "
-                    f"(SI units: Pa, Pa, m, kg) are too large or too small together (E_eff = "
-                    f"{self.E_eff!r} Pa, Sy = {self.yielding.Sy!r} Pa, R_eff = {self.R_eff!r} m, "
-                    f"mass = {self.mass!r} kg)")
+                    f"{culprits}: outside the range this model can evaluate in double precision "
+                    f"(this impact's {k} = {v!r} is not a finite, normal double). Check the units: "
+                    "E and Sy in Pa (steel: E = 2e11, Sy = 1e9), R in m, mass in kg, rho in kg/m^3")
 
     # --- material parameters of the normalised law ---
     @property
@@ -610,6 +614,31 @@ class Impact:
         w_res, r_ratio = direct.residual_star(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y,
                                               self.nu, unloading=unloading, extrapolate=extrapolate)
         return w_res * self.omega_c, r_ratio * self.R_eff
+
+
+# Order of magnitude of each input, only to name the one(s) farthest from any physical value.
+_TYPICAL = {"E": 1e11, "Sy": 3e8, "R": 1e-2, "mass": 1e-2, "rho": 5e3}
+
+
+def _culprits(sphere, R1, other, R2, yielding, mass, names):
+    """'name = value unit' of the inputs farthest (in orders of magnitude) from physical values."""
+    b1, b2, r1, r2, m_name = names
+    cand = []
+
+    def add(label, value, kind, unit):
+        dev = abs(math.log10(value / _TYPICAL[kind])) if 0.0 < value < math.inf else math.inf
+        cand.append((dev, f"{label} = {value!r} {unit}"))
+
+    soft = sphere if other is None or (1 - sphere.nu**2) / sphere.E >= (1 - other.nu**2) / other.E else other
+    add(f"{b1 if soft is sphere else b2}.E", soft.E, "E", "Pa")
+    add(f"{b1 if yielding is sphere else b2}.Sy", yielding.Sy, "Sy", "Pa")
+    add(r1 if R2 is None or R1 <= R2 else r2, R1 if R2 is None else min(R1, R2), "R", "m")
+    if m_name is None:
+        add(f"{b1}.rho", sphere.rho, "rho", "kg/m^3")
+    else:
+        add(m_name, mass, "mass", "kg")
+    worst = max(d for d, _ in cand)
+    return " and ".join(t for d, t in cand if d >= 0.5 * worst)
 
 
 def _sphere_mass(material, R, mass, name, R_name="R"):

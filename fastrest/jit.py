@@ -14,10 +14,12 @@ Build the data once in Python, pass it into your jitted function, and call these
             total += energy[i] * frj.loss_curve(data, v1_star[i])
         return total
 
-All functions take V1* = V1/V_c (dimensionless) and return NaN for input outside the data's
-domain (negative or NaN speed, V1* > v_max, material outside a table, a table's point past
-w_m* = 425 or a/R = 1): check with ``x != x`` or
-``np.isnan`` if your code can produce such input. Tables: ``fastrest.load_table().data``;
+All functions take V1* = V1/V_c (dimensionless); every scalar argument may be a float64, float32
+or an integer (converted to float64; model codes and material indices may be integer-valued
+floats). They return NaN for input outside the data's domain (negative or NaN speed, V1* > v_max,
+material outside a table, a table's point past w_m* = 425 or a/R = 1, a result that would not be
+finite) and never raise: check with ``x != x`` or ``np.isnan`` if your code can produce such
+input. Tables: ``fastrest.load_table().data``;
 ``unloading`` is :data:`JCG` (eq 35), :data:`ETSION` (eq 33) or :data:`BRAKE` (Brake 2015).
 
 Build the data in Python and pass it in as an argument (as above): the table kernels read a
@@ -36,7 +38,7 @@ import numpy as np
 from ._jit import jit
 from .critical import CriticalScales, critical_scales
 from .curve_data import CurveData, e_curve, loss_curve, omega_m_curve
-from .scene import SceneData, scene_value
+from .scene import SceneData, material_index, scene_value
 from .force_law import STATE_SIZE, contact_force, hertz_contact_time
 from .tables import TableData, table_value
 from .unloading import BRAKE, ETSION, JCG
@@ -127,9 +129,10 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
     >>> round(frj.e_table(tab, 10.0, 0.005, 0.33, frj.ETSION), 6)  # direct: 0.865202
     0.865202
     """
-    if not unloading >= 0:
+    code = material_index(unloading)  # int64; -1 for a fraction, a negative or non-finite code
+    if code < 0:
         return np.nan
-    return table_value(tab, 1 + 2 * unloading, v1_star, eps_y, nu)
+    return table_value(tab, 1 + 2 * code, v1_star, eps_y, nu)
 
 
 @jit(inline=True)
@@ -169,9 +172,10 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
     >>> round(frj.loss_table(tab, 10.0, 0.005, 0.33, frj.JCG), 6)  # direct: 0.313202
     0.313202
     """
-    if not unloading >= 0:
+    code = material_index(unloading)
+    if code < 0:
         return np.nan
-    return table_value(tab, 2 + 2 * unloading, v1_star, eps_y, nu)
+    return table_value(tab, 2 + 2 * code, v1_star, eps_y, nu)
 
 
 @jit(inline=True)

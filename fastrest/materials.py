@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from ._validation import check_finite_positive, check_nu, real_scalar
+from ._validation import check_finite_positive, check_nu, kernel_array, real_scalar
 from .critical import c_of_nu
 
 __all__ = ["Material", "poisson_factor", "critical_velocity_ratios"]
@@ -60,7 +60,7 @@ def poisson_factor(nu):
     nu = check_nu(nu, allow_half=True)
     if nu.ndim == 0:
         return float(c_of_nu(float(nu)))
-    return c_of_nu(np.ascontiguousarray(nu).ravel()).reshape(nu.shape)
+    return c_of_nu(kernel_array(nu)).reshape(nu.shape)
 
 
 def critical_velocity_ratios(nu):

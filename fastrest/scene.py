@@ -9,16 +9,20 @@ material k's curve gives. In Numba code: :func:`fastrest.jit.e_scene`.
 """
 import math
 from collections import namedtuple
+from collections.abc import Iterable
 
 import numba as nb
 import numpy as np
 from numba.extending import overload
 
 from ._jit import jit
-from ._validation import OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, broadcast_named, check_velocity, warn
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, broadcast_named, check_velocity,
+                          kernel_array, warn)
+from ._validation import short_repr as _short
 from .cells import N_HERTZ
-from .curve import curve
+from .curve import Curve, curve
 from .curve_data import curve_value
+from .unloading import unloading_code
 
 __all__ = ["SceneData", "material_index", "scene_value", "scene_array", "Scene", "scene"]
 
@@ -286,9 +290,12 @@ class Scene:
     """
 
     def __init__(self, curves):
-        self.curves = list(curves)
+        self.curves = _sequence(curves, "curves", "a sequence of fastrest.Curve")
         if not self.curves:
-            raise ValueError("a scene needs at least one material")
+            raise ValueError("curves is empty: a scene needs at least one material")
+        for k, c in enumerate(self.curves):
+            if not isinstance(c, Curve):
+                raise TypeError(f"curves[{k}] must be a fastrest.Curve, got {_short(c)} ({type(c).__name__})")
         models = {c.data.model for c in self.curves}
         if len(models) != 1:
             raise ValueError("all curves of a scene must use the same unloading model")
@@ -319,8 +326,8 @@ class Scene:
         broadcast_named((v, "v1_star"), (k, "material"))
         v, k = np.broadcast_arrays(v, k)
         shape = v.shape
-        vf = np.ascontiguousarray(v).ravel()
-        kf = np.ascontiguousarray(k, dtype=np.int64).ravel()
+        vf = kernel_array(v)
+        kf = kernel_array(k, np.int64)
         out = np.empty(vf.size)
         scene_array(self.data, what, kf, vf, out)
         bad = np.isnan(out)
@@ -390,10 +397,15 @@ def scene(materials, unloading="jcg", *, v_max=None, extrapolate=False):
     >>> s.e([20.0, 20.0], [0, 1]).round(4).tolist()
     [0.7463, 0.7472]
     """
-    materials = list(materials)
+    materials = _sequence(materials, "materials", "a sequence of (eps_y, nu) pairs")
+    if not materials:
+        raise ValueError("materials is empty: a scene needs at least one material")
     for k, m in enumerate(materials):
+        if isinstance(m, (str, bytes, bytearray, dict)) or not isinstance(m, Iterable):
+            raise TypeError(f"materials[{k}] must be an (eps_y, nu) pair, got {_short(m)} ({type(m).__name__})")
         if np.ndim(m) != 1 or len(m) != 2:
-            raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {m!r}")
+            raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {_short(m)}")
+    unloading_code(unloading)
     if v_max is None:
         vm = [None] * len(materials)
     else:
@@ -401,4 +413,18 @@ def scene(materials, unloading="jcg", *, v_max=None, extrapolate=False):
         if not (v.ndim == 0 or v.shape == (len(materials),)):
             raise ValueError(f"v_max must be one number or one per material ({len(materials)}); got shape {v.shape}")
         vm = np.broadcast_to(v, (len(materials),)).tolist()
-    return Scene([curve(e, n, unloading, v_max=v, extrapolate=extrapolate) for (e, n), v in zip(materials, vm)])
+    curves = []
+    for k, ((e, n), v) in enumerate(zip(materials, vm)):
+        try:
+            curves.append(curve(e, n, unloading, v_max=v, extrapolate=extrapolate))
+        except (TypeError, ValueError) as exc:  # name the scene's parameter, then curve's words
+            raise type(exc)(f"materials[{k}] = {_short(tuple(materials[k]))}: {exc}") from None
+    return Scene(curves)
+
+
+def _sequence(x, name, what):
+    """``list(x)`` for a sequence (a list, tuple, array or generator); TypeError naming ``name``
+    for a number, string, mapping or anything else."""
+    if isinstance(x, (str, bytes, bytearray, dict)) or not isinstance(x, Iterable) or isinstance(x, np.ma.MaskedArray):
+        raise TypeError(f"{name} must be {what}, got {_short(x)} ({type(x).__name__})")
+    return list(x)

@@ -3,9 +3,14 @@ command called with hostile and extreme values for each parameter in turn (the o
 
 Each call is classified:
 
-* ``clear``: TypeError or ValueError whose message names the parameter;
+* ``clear``: TypeError or ValueError whose message names the parameter (the Python parameter: never a
+  CLI ``--option`` for a Python call) and whose type fits the value: TypeError for a value that is
+  not a number (a string, a bool, None, a complex, an object) or not of the parameter's kind (a
+  number for a Material), ValueError for a number out of range (NaN, inf, -1, 1e300, 2.5 for a
+  count);
 * ``accepted``: returned, and every number in the result is finite (valid or extreme-but-valid input);
-* ``unclear``: any other exception, or a message that does not name the parameter;
+* ``unclear``: any other exception, an error of the wrong type, or a message that does not name
+  the parameter;
 * ``silent``: returned for input that is never valid (a string, a bool, NaN, ...), or returned a
   non-finite number;
 * ``crash``: the process died or exceeded the time limit (the runner restarts after the case).
@@ -41,6 +46,12 @@ EXTREME = {
     "np.float32": np.float32(0.3), "int": 3, "np.int64": np.int64(2), "-0": -0.0,
 }
 ARRAYS = {"2x2 array": np.array([[0.3, 0.3], [0.3, 0.3]]), "empty": np.array([])}
+#: Labels of values that are not real numbers at all: a TypeError is required.
+NOT_REAL = {"str", "bytes", "bytearray", "bool", "np.bool_", "None", "complex", "list with bool",
+            "nested bool", "masked", "object", "dict"}
+#: Labels of real numbers (or number-valued arrays): an error for them is a ValueError (out of
+#: range), except for parameters that take no number at all (a Material, a flag).
+NUMBERS = {"nan", "-inf", "inf", "int beyond float"} | set(EXTREME) | {f"random {i}" for i in range(10)}
 
 LEVELS = {"quick": dict(random=0), "full": dict(random=6)}
 
@@ -114,8 +125,9 @@ def _targets():
     for f in ("e", "loss", "omega_m"):
         add(f"Curve.{f}", dict(v1_star=5.0), lambda f=f, **k: getattr(c, f)(**k))
         add(f"Scene.{f}", dict(v1_star=5.0, material=1), lambda f=f, **k: getattr(s, f)(**k))
-    add("scene", dict(v_max=20.0, extrapolate=False),
-        lambda **k: fastrest.scene([(0.005, 0.33)], **k))
+    add("scene", dict(materials=[(0.005, 0.33)], v_max=20.0, extrapolate=False),
+        lambda **k: fastrest.scene(**k))
+    add("Scene", dict(curves=[c]), lambda **k: fastrest.Scene(**k))
     add("contact_law", dict(eps_y=0.005, nu=0.33, w_max=50.0, extrapolate=False, omega_c=1.0, P_c=1.0),
         lambda **k: fastrest.contact_law(**k))
     add("ContactLaw.force", dict(interference=2.0), lambda **k: law.force(**k))
@@ -137,7 +149,7 @@ def _targets():
     add("models.wu_finite_plastic_velocity", dict(eps_y=0.005), lambda **k: models.wu_finite_plastic_velocity(**k))
     add("models.thornton", dict(v1_star=5.0, nu=0.3), lambda **k: models.thornton(**k))
     add("models.ceb_hardness_factor", dict(nu=0.3), lambda **k: models.ceb_hardness_factor(**k))
-    add("rough.gaussian_summits", dict(n=10, sigma=1e-6), lambda **k: rough.gaussian_summits(**k))
+    add("rough.gaussian_summits", dict(n=10, sigma=1e-6, seed=1), lambda **k: rough.gaussian_summits(**k))
     add("rough.GreenwoodWilliamson", dict(eta=1e10, sigma=1e-6, A_n=1e-4), lambda **k: rough.GreenwoodWilliamson(**k))
     add("rough.RoughSurface", dict(material=steel, R_a=1e-4, heights=[0.0, 1e-8, 2e-8]),
         lambda **k: rough.RoughSurface(**k))
@@ -149,6 +161,11 @@ def _targets():
 
 
 _BASE_E = ["--E", "2e11", "--nu", "0.3", "--Sy", "1e9", "--R", "0.01", "--rho", "7800", "--V", "1"]
+
+
+#: An output path whose directory does not exist (in the temporary directory, never a system path):
+#: the CLI cases give bad options, refused before the path is used.
+_NO_DIR_OUT = os.path.join(tempfile.gettempdir(), "fastrest-fuzz-no-such-dir", "x.h5")
 
 
 def _cli_cases():
@@ -178,8 +195,8 @@ def _cli_cases():
                 "--eps-y-blocks": ["128:1000000000", "x", "3:24"], "--fine-v1-star-max": ["3", "inf"]}
     for o, vals in grid_bad.items():
         for t in vals:
-            out.append((f"cli build {o}", o.strip("-").replace("-", "_"), ["build", "--out", "/dev/null/x.h5", o, t], "error"))
-    for t in ("/nonexistent/x.h5", "/", os.devnull, __file__):
+            out.append((f"cli build {o}", o.strip("-").replace("-", "_"), ["build", "--out", _NO_DIR_OUT, o, t], "error"))
+    for t in (_NO_DIR_OUT, tempfile.gettempdir(), __file__):
         out.append(("cli info", "file", ["info", t], "error"))
     out.append(("cli info (default)", "file", ["info"], "ok"))
     return out
@@ -187,8 +204,10 @@ def _cli_cases():
 
 #: Parameters for which None is a valid value (an optional argument), or inf (a body that never yields).
 OPTIONAL = {("Material", "rho"), ("Impact", "mass"), ("curve", "v_max"), ("scene", "v_max"),
-            ("contact_law", "w_max"), ("ContactLaw.new_state", "n")}
+            ("contact_law", "w_max"), ("ContactLaw.new_state", "n"), ("rough.gaussian_summits", "seed")}
 INF_OK = {("Material", "Sy")}
+#: (target, parameter, label) valid although the label is never valid for a number.
+VALID = {("rough.gaussian_summits", "seed", "int beyond float")}  # any integer >= 0 seeds NumPy
 #: Flags: only True/False (and NumPy booleans) are valid, numbers are not.
 FLAGS = {"extrapolate", "cap", "locate_switch"}
 #: Words a message may use for a parameter: derived quantities the parameter sets.
@@ -201,7 +220,7 @@ def _expect(name, p, label):
         return "either" if label in ("bool", "np.bool_") else "error"
     if label == "None" and (name, p) in OPTIONAL:
         return "either"
-    if label == "inf" and (name, p) in INF_OK:
+    if label == "inf" and (name, p) in INF_OK or (name, p, label) in VALID:
         return "either"
     return "error" if label in NOT_NUMBERS else "either"
 
@@ -230,6 +249,26 @@ def _value(label, name, p):
     # random: a float of random magnitude and sign, seeded by the case
     rng = np.random.default_rng(abs(hash((name, p, label))) % 2**32)
     return float(rng.choice([-1, 1]) * 10.0 ** rng.uniform(-320, 308))
+
+
+def _expected_type(label, default):
+    """The exception type an error for ``label`` must have, given the parameter's valid
+    ``default`` value; None where either is right (an array for a scalar, an empty array)."""
+    if isinstance(default, (bool, np.bool_)) or label in NOT_REAL:
+        return TypeError  # a flag takes True/False only
+    if label in ARRAYS:
+        return None
+    numeric = isinstance(default, (int, float, np.ndarray)) or (
+        isinstance(default, (list, tuple)) and all(isinstance(x, (int, float)) for x in default))
+    if not numeric:  # an object (Material, Impact, a list of pairs or of curves): a number is a type error
+        return TypeError
+    return ValueError if label in NUMBERS else None
+
+
+_CLI_OPTION = re.compile(r"(?<![\w-])--[A-Za-z][\w-]*")
+#: An exception's repr inside a message ("ZeroDivisionError('division by zero')"): an internal
+#: failure passed on as text, not a message about the parameter.
+_LEAKED = re.compile(r"\b[A-Z]\w*(Error|Exception)\(")
 
 
 def _names_param(msg, p):
@@ -286,6 +325,13 @@ def classify(case, targets):
                 r = fn(**kwargs)
     except (TypeError, ValueError) as exc:
         msg = str(exc)
+        want = _expected_type(label, params[p])
+        if want is not None and not isinstance(exc, want):
+            return "unclear", f"{type(exc).__name__} (want {want.__name__}): {msg[:300]}"
+        if _CLI_OPTION.search(msg):
+            return "unclear", f"names a CLI option in a Python call: {msg[:300]}"
+        if _LEAKED.search(msg):
+            return "unclear", f"passes on an internal exception: {msg[:300]}"
         return ("clear", msg[:300]) if _names_param(msg, p) else ("unclear", f"{type(exc).__name__}: {msg[:300]}")
     except Exception as exc:
         return "unclear", f"{type(exc).__name__}: {str(exc)[:300]}"
@@ -296,15 +342,27 @@ def classify(case, targets):
     return "accepted", ""
 
 
+#: Labels of the default (fast) run: one of each kind of value.
+FAST_LABELS = ("str", "None", "bool", "complex", "nan", "inf", "-1", "0", "huge", "subnormal", "2.5",
+               "2x2 array")
+
+
+def fast_cases():
+    """A subset of the quick cases for the default test run, classified in this process: every
+    Python target and parameter with :data:`FAST_LABELS` (the CLI and the child processes are in
+    the slow runs)."""
+    return [c for c in build_cases("quick") if not c[3].startswith("cli-") and c[2] in FAST_LABELS]
+
+
 def _child(level, start):
     """Run cases from ``start``; one JSON line per case (flushed, so a crash loses nothing)."""
     os.environ.setdefault("MPLBACKEND", "Agg")
     # the records go to a private copy of stdout; what the cases themselves print (the CLI's
-    # tables, a line without its newline) goes to /dev/null and cannot merge into a record
+    # tables, a line without its newline) goes to a temporary file and cannot merge into a record
     out = os.fdopen(os.dup(1), "w")
-    null = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(null, 1)
-    sys.stdout = open(os.devnull, "w")
+    sink = tempfile.TemporaryFile("w")   # not the system's /dev/null: tests touch no system path
+    os.dup2(sink.fileno(), 1)
+    sys.stdout = sink
     cases = build_cases(level)
     targets = {n: (p, f) for n, p, f in _targets()}
     for i in range(start, len(cases)):

@@ -1,7 +1,11 @@
-"""The fuzz suite (tests/fuzz.py; issue 13): 0 unclear, 0 silent, 0 crash.
+"""The fuzz suite (tests/fuzz.py; issues 13 and 20): 0 unclear, 0 silent, 0 crash.
 
-The explicit cases run in child processes (a crash or hang is counted, not fatal); hypothesis
-draws further values for the fast pure-Python entry points in this process.
+An error is clear when it is a TypeError (not a number) or ValueError (a number out of range) that
+names the Python parameter, no CLI ``--option``, and passes on no internal exception. The default
+run classifies one value of each kind for every parameter in this process
+(:func:`test_fuzz_fast_subset`); the quick and full levels (with the CLI, in child processes: a
+crash or hang is counted, not fatal) are ``slow``. Hypothesis draws further values for the fast
+pure-Python entry points in this process.
 """
 import math
 import sys
@@ -24,6 +28,23 @@ def _check(level):
     assert (counts["unclear"], counts["silent"], counts["crash"]) == (0, 0, 0), problems[:20]
 
 
+def test_fuzz_fast_subset():
+    """One value of each kind for every parameter of every Python target, in this process (~1 s
+    after the targets are built): errors are TypeError/ValueError of the right type, name the
+    parameter, name no CLI option and pass on no internal exception."""
+    targets = {n: (p, f) for n, p, f in fuzz._targets()}
+    problems = []
+    counts = dict(clear=0, accepted=0, unclear=0, silent=0)
+    for case in fuzz.fast_cases():
+        outcome, detail = fuzz.classify(case, targets)
+        counts[outcome] += 1
+        if outcome in ("unclear", "silent"):
+            problems.append((case[:3], outcome, detail))
+    assert counts["clear"] > 0 and counts["accepted"] > 0
+    assert not problems, problems[:20]
+
+
+@pytest.mark.slow
 def test_fuzz_explicit_cases():
     _check("quick")
 
@@ -43,6 +64,18 @@ def test_classifier_flags_bad_behaviour():
     assert fuzz.classify(("h", "x", "str", "error"), targets)[0] == "unclear"
     assert fuzz.classify(("k", "x", "str", "error"), targets)[0] == "unclear"
     assert fuzz.classify(("m", "x", "str", "error"), targets)[0] == "clear"
+    # the right type: TypeError for a non-number, ValueError for a number out of range
+    wrong = {"t": ({"x": 1.0}, lambda x: (_ for _ in ()).throw(ValueError("x must be a number"))),
+             "v": ({"x": 1.0}, lambda x: (_ for _ in ()).throw(TypeError("x must be >= 0"))),
+             "cli": ({"V_max": 1.0}, lambda V_max: (_ for _ in ()).throw(ValueError("--V-max must be > 0"))),
+             "leak": ({"E": 1.0}, lambda E: (_ for _ in ()).throw(ValueError(
+                 "E: this impact's error = ZeroDivisionError('division by zero')")))}
+    assert fuzz.classify(("t", "x", "str", "error"), wrong)[0] == "unclear"
+    assert fuzz.classify(("t", "x", "None", "error"), wrong)[0] == "unclear"
+    assert fuzz.classify(("v", "x", "-1", "either"), wrong)[0] == "unclear"
+    assert fuzz.classify(("v", "x", "nan", "error"), wrong)[0] == "unclear"
+    assert fuzz.classify(("cli", "V_max", "-1", "either"), wrong)[0] == "unclear"
+    assert fuzz.classify(("leak", "E", "tiny", "either"), wrong)[0] == "unclear"
 
 
 def test_crash_and_hang_are_counted(monkeypatch, tmp_path):

@@ -186,6 +186,7 @@ def test_bad_grid_rejected(grid, word):
         tables.normalise_grid(grid)
 
 
+@pytest.mark.slow
 def test_jit_table_functions_reject_unknown_unloading():
     """The unloading code indexes the table's quantities: anything but a model the table holds
     (JCG, ETSION, BRAKE) is NaN, never a neighbouring quantity's value or a read outside the

@@ -56,7 +56,18 @@ def _scene_kernel(sdata, k, v, out):
         out[2, i] = frj.loss_scene(sdata, k[i], v[i])
 
 
+def _kernel_light(cdata, tab, v, eps, nu, out):
+    # the default run's loop: every curve function and one table call (each inlined table call
+    # costs ~10 s of compiling on 2 cores; the full loops above are `slow`)
+    for i in range(v.size):
+        out[0, i] = frj.omega_m_curve(cdata, v[i])
+        out[1, i] = frj.e_curve(cdata, v[i])
+        out[2, i] = frj.loss_curve(cdata, v[i])
+        out[4, i] = frj.e_table(tab, v[i], eps[i], nu[i], frj.JCG)
+
+
 serial = numba.njit(_kernel)
+light = numba.njit(_kernel_light)
 scene_parallel = numba.njit(parallel=True)(_scene_kernel)
 parallel = numba.njit(parallel=True)(_kernel_parallel)
 sum_loss = numba.njit(parallel=True)(_sum_loss_parallel)
@@ -84,6 +95,7 @@ def setup():
     return c, tab, v, eps, nu, expected
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fn", [serial, parallel], ids=["serial", "prange"])
 def test_user_njit_matches_python_api(setup, fn):
     c, tab, v, eps, nu, expected = setup
@@ -93,11 +105,19 @@ def test_user_njit_matches_python_api(setup, fn):
     np.testing.assert_array_equal(out[:rows], expected[:rows])
 
 
+def test_user_njit_light_matches_python_api(setup):
+    """The default run's check of a user's loop (the full serial and prange loops are `slow`)."""
+    c, tab, v, eps, nu, expected = setup
+    out = np.empty((8, v.size))
+    light(c.data, tab.data, v, eps, nu, out)
+    np.testing.assert_array_equal(out[[0, 1, 2, 4]], expected[[0, 1, 2, 4]])
+
+
 def test_jit_values_are_the_model(setup):
     """Sanity: what the jitted loop returns is the direct solver's value (not only self-consistent)."""
     c, tab, v, eps, nu, _ = setup
     out = np.empty((8, v.size))
-    parallel(c.data, tab.data, v, eps, nu, out)
+    light(c.data, tab.data, v, eps, nu, out)
     np.testing.assert_allclose(out[1], direct.e_star(v, EPS, NU), rtol=1e-12, atol=0)
     np.testing.assert_allclose(out[4], direct.e_star(v, eps, nu), rtol=1e-8, atol=0)
 
@@ -109,8 +129,11 @@ def test_parallel_reduction(setup):
     assert s == pytest.approx(direct.loss_star(v, EPS, NU).sum(), rel=1e-10)
 
 
-@pytest.mark.parametrize("fn", [serial, parallel], ids=["serial", "prange"])
-def test_invalid_points_give_nan_inside_njit(setup, fn):
+@pytest.mark.parametrize("fn, table_rows", [
+    (light, [4]),
+    pytest.param(serial, [3, 4, 5, 6, 7], marks=pytest.mark.slow),
+    pytest.param(parallel, [3, 4, 5, 6, 7], marks=pytest.mark.slow)], ids=["light", "serial", "prange"])
+def test_invalid_points_give_nan_inside_njit(setup, fn, table_rows):
     c, tab, *_ = setup
     lim = direct.v1_star_limit(EPS, NU)
     #            V1*            eps_y    nu     curve invalid?  table invalid?
@@ -132,9 +155,10 @@ def test_invalid_points_give_nan_inside_njit(setup, fn):
     nu = np.array([k[2] for k in cases])
     out = np.empty((8, v.size))
     fn(c.data, tab.data, v, eps, nu, out)
+    table = out[table_rows]
     for i, (_, _, _, bad_curve, bad_table) in enumerate(cases):
         assert np.isnan(out[:3, i]).all() == bad_curve and np.isnan(out[:3, i]).any() == bad_curve, cases[i]
-        assert np.isnan(out[3:, i]).all() == bad_table and np.isnan(out[3:, i]).any() == bad_table, cases[i]
+        assert np.isnan(table[:, i]).all() == bad_table and np.isnan(table[:, i]).any() == bad_table, cases[i]
 
 
 def test_etsion_curve_in_njit():
@@ -201,3 +225,147 @@ def test_table_loop_takes_no_references_per_point():
     assert len(bodies) == 1
     n_arrays = sum(isinstance(x, np.ndarray) for x in tab) + 4
     assert 0 < bodies[0].count("call void @NRT_incref(") <= n_arrays
+
+
+# --- issue 20: the NaN contract and scalar types of every function of fastrest.jit.__all__ ----------
+
+_INF = math.inf
+
+
+def test_critical_scales_nan_outside_double_precision():
+    """E1 = 1e-320 raised ZeroDivisionError inside jitted code; R1 = 1e300 gave V_c = inf."""
+    for args in [(1e-320, 0.33, 1.12e9, 0.01, 0.0327, _INF, 0.3, _INF, _INF, _INF),
+                 (200e9, 0.33, 1.12e9, 1e300, 0.0327, _INF, 0.3, _INF, _INF, _INF),
+                 (5e-324, 0.33, 1.12e9, 0.01, 0.0327, _INF, 0.3, _INF, _INF, _INF),
+                 (200e9, 0.33, 1.12e9, 0.01, 0.0, _INF, 0.3, _INF, _INF, _INF)]:
+        s = frj.critical_scales(*args)
+        assert all(math.isnan(x) for x in s), (args, s)
+    s = frj.critical_scales(200e9, 0.33, 1.12e9, 0.01, 0.0327, _INF, 0.3, _INF, _INF, _INF)
+    assert all(math.isfinite(x) for x in s) and round(s.V_c, 5) == 0.05155
+
+
+def test_critical_formulas_never_raise():
+    from fastrest import critical as cr
+
+    assert math.isnan(cr.effective_modulus(0.0, 0.3, _INF, 0.0))
+    assert math.isnan(cr.effective_modulus(5e-324, 0.3, _INF, 0.0))  # 1/E' overflows: E' = 0
+    assert math.isnan(cr.effective_radius(1.0, -1.0)) and math.isnan(cr.effective_mass(0.0, 0.0))
+    assert math.isnan(cr.critical_velocity(1.0, 0.0)) and math.isnan(cr.critical_energy(1.0, 1.0, 1e-100, 1.0))
+    assert math.isnan(cr.critical_force(1.6, 1e9, 0.0, 0.01))
+
+
+def test_hertz_contact_time_nan_outside_its_domain():
+    """V1* = 0 gave inf, V1* = +/-inf gave 0.0."""
+    for v in (0.0, -0.0, _INF, -_INF, math.nan, -1.0):
+        assert math.isnan(frj.hertz_contact_time(v)), v
+    assert round(frj.hertz_contact_time(1.0), 6) == 2.943275
+
+
+def test_jit_nan_contract_fuzzed():
+    """Every function of fastrest.jit.__all__ at extreme values: NaN or a finite number, never an
+    exception (ZeroDivisionError inside njit) and never inf."""
+    import random
+
+    law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+    c = fastrest.curve(0.005, 0.33, v_max=30.0).data
+    s = fastrest.scene([(0.005, 0.33)], v_max=30.0).data
+    t = fastrest.load_table().data
+    X = [0.0, -0.0, 5e-324, 1e-320, 1e-300, 0.3, 1.0, 5.0, 1e300, 1.7e308, _INF, -_INF, math.nan, -1.0]
+    codes = [-1, 0, 1, 2, 3, 2**62, -2**63]
+
+    def ok(r):
+        return all(x != x or math.isfinite(x) for x in (r if isinstance(r, tuple) else (r,)))
+
+    for v in X:
+        assert ok(frj.hertz_contact_time(v)), v
+        assert ok((frj.omega_m_curve(c, v), frj.e_curve(c, v), frj.loss_curve(c, v))), v
+        for k in codes:
+            assert ok((frj.omega_m_scene(s, k, v), frj.e_scene(s, k, v), frj.loss_scene(s, k, v))), (k, v)
+            assert ok((frj.e_table(t, v, 0.005, 0.33, k), frj.loss_table(t, v, 0.005, 0.33, k))), (k, v)
+        for e in X[::2]:
+            assert ok(frj.omega_m_table(t, v, e, 0.33)) and ok(frj.e_table(t, 5.0, e, v, 0)), (v, e)
+        for w in X:
+            st = law.new_state()
+            assert ok(frj.contact_force(law.data, st, w)) and ok(frj.contact_force(law.data, st, v)), (w, v)
+    rng = random.Random(20)
+    pool = X + [200e9, 0.3, 1e9, 0.01, 0.03]
+    for _ in range(2000):
+        a = [rng.choice(pool) for _ in range(10)]
+        assert ok(tuple(frj.critical_scales(*a))), a
+
+
+def test_contact_force_nan_for_infinite_interference():
+    law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+    for w in (_INF, -_INF, math.nan):
+        assert math.isnan(frj.contact_force(law.data, law.new_state(), w))
+    st = law.new_state()
+    frj.contact_force(law.data, st, 10.0)
+    assert math.isnan(frj.contact_force(law.data, st, -_INF))  # unloading branch
+
+
+@numba.njit
+def _user_force(data, state, w):
+    return frj.contact_force(data, state, w)
+
+
+@numba.njit
+def _user_hertz(v):
+    return frj.hertz_contact_time(v)
+
+
+@numba.njit
+def _user_scales(E1, nu1, Sy1, R1, m1):
+    return frj.critical_scales(E1, nu1, Sy1, R1, m1, math.inf, 0.3, math.inf, math.inf, math.inf)
+
+
+@numba.njit
+def _user_curve(d, v):
+    return frj.omega_m_curve(d, v), frj.e_curve(d, v), frj.loss_curve(d, v)
+
+
+@numba.njit
+def _user_scene(d, k, v):
+    return frj.omega_m_scene(d, k, v), frj.e_scene(d, k, v), frj.loss_scene(d, k, v)
+
+
+@numba.njit
+def _user_table(t, v, e, n, u):
+    return frj.omega_m_table(t, v, e, n), frj.e_table(t, v, e, n, u), frj.loss_table(t, v, e, n, u)
+
+
+def _dtype_case(dtype, kinds):
+    """The functions of fastrest.jit.__all__ (those of ``kinds``) called from a user's @njit
+    function with ``dtype`` scalars equal the float64 call (inputs exact in every type)."""
+    d = dtype
+    if "force" in kinds:
+        law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+        assert _user_force(law.data, law.new_state(), d(5)) == _user_force(law.data, law.new_state(), 5.0)
+        assert _user_hertz(d(5)) == _user_hertz(5.0)
+        # integers that fit int32 and are exact in float32
+        assert _user_scales(d(2**30), d(0), d(2**23), d(1), d(1)) == _user_scales(2.0**30, 0.0, 2.0**23, 1.0, 1.0)
+    if "data" in kinds:
+        c = fastrest.curve(0.005, 0.33, v_max=30.0).data
+        s = fastrest.scene([(0.005, 0.33)], v_max=30.0).data
+        t = fastrest.load_table().data
+        assert _user_curve(c, d(5)) == _user_curve(c, 5.0)
+        assert _user_scene(s, d(0), d(5)) == _user_scene(s, 0, 5.0)
+        if d in (np.float32, np.float64):  # eps_y, nu are fractions
+            e, n = d(0.005), d(0.25)
+            assert _user_table(t, d(5), e, n, d(0)) == _user_table(t, 5.0, float(e), float(n), 0)
+        else:
+            assert _user_table(t, d(5), 0.005, 0.25, d(0)) == _user_table(t, 5.0, 0.005, 0.25, 0)
+
+
+@pytest.mark.parametrize("dtype", [np.int64, np.float32], ids=["int64", "float32"])
+def test_contact_force_and_critical_scales_take_integers_and_float32(dtype):
+    """contact_force and critical_scales did not compile for an integer or float32 (TypingError
+    in float_bits). The curve, scene and table functions: tests/test_issue13_inputs.py (default run)
+    and the full matrix below."""
+    _dtype_case(dtype, ("force",))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("dtype", [np.int64, np.int32, np.float32, np.float64],
+                         ids=["int64", "int32", "float32", "float64"])
+def test_jit_functions_take_every_scalar_type(dtype):
+    _dtype_case(dtype, ("force", "data"))

@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_finite_positive, real_scalar
+from .._validation import check_count, check_finite_positive, real_scalar
 from ..interpolation import GAUSS_U, chebyshev_nodes, fit_cells
 from .expectations import GWData
 
-__all__ = ["gaussian_summits", "GreenwoodWilliamson", "gw_data", "MIN_SUMMITS", "MAX_SUMMITS",
+__all__ = ["gaussian_summits", "GreenwoodWilliamson", "gw_data", "MIN_SUMMITS", "MAX_SUMMITS", "SIGMA_SAMPLE_MAX",
            "PDF_CELLS_PER_SIGMA"]
 
 #: Fewest summits (N = eta A_n) of a statistical surface: below it the flat would have to sink
@@ -25,6 +25,9 @@ MIN_SUMMITS = 1e-6
 MAX_SUMMITS = 1e30
 #: Cells per sigma of a tabulated user pdf (degree-5 Chebyshev cells).
 PDF_CELLS_PER_SIGMA = 64
+#: Largest sigma of :func:`gaussian_summits` (m): a normal draw never exceeds 64 sigma, so the heights
+#: stay finite doubles.
+SIGMA_SAMPLE_MAX = 2.0**1017
 
 
 def gaussian_summits(n, sigma, seed=None):
@@ -33,11 +36,13 @@ def gaussian_summits(n, sigma, seed=None):
     Parameters
     ----------
     n : int
-        Number of summits (-), 1 <= n <= 1e9.
+        Number of summits (-), 1 <= n <= 1e9 (an integer-valued float is accepted; a bool is not).
     sigma : float
-        Standard deviation of the heights (m), > 0.
+        Standard deviation of the heights (m), 0 < sigma <= 2^1017 (~1.4e306: larger heights
+        would overflow double precision).
     seed : int or numpy.random.Generator, optional
-        Seed of :func:`numpy.random.default_rng`; the same seed gives the same heights.
+        Seed of :func:`numpy.random.default_rng` (an integer >= 0, a sequence of them, a
+        ``SeedSequence``, ``BitGenerator`` or ``Generator``); the same seed gives the same heights.
 
     Returns
     -------
@@ -47,9 +52,11 @@ def gaussian_summits(n, sigma, seed=None):
     Raises
     ------
     ValueError
-        If ``n`` is not an integer in [1, 1e9] or ``sigma`` is not finite and > 0.
+        If ``n`` is not a whole number in [1, 1e9], ``sigma`` is not in (0, 2^1017] or ``seed`` is
+        negative or not a whole number.
     TypeError
-        If ``sigma`` is not a real number.
+        If ``n`` or ``sigma`` is not a real number (a bool, a string, None), or ``seed`` is not an
+        integer, a sequence of them or a NumPy random generator.
 
     Notes
     -----
@@ -63,11 +70,37 @@ def gaussian_summits(n, sigma, seed=None):
     >>> z.shape
     (1000,)
     """
-    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= 10**9:
-        raise ValueError(f"n (number of summits) must be an integer in [1, 1e9]; got {n!r}")
+    n = check_count(n, "n (number of summits)", 1, 10**9)
     sigma = float(check_finite_positive(real_scalar(sigma, "sigma"), "sigma",
                                         "(m, standard deviation of summit heights)"))
-    return np.random.default_rng(seed).normal(0.0, sigma, int(n))
+    if sigma > SIGMA_SAMPLE_MAX:
+        raise ValueError(f"sigma (m, standard deviation of summit heights) must be in (0, 2^1017 = "
+                         f"{SIGMA_SAMPLE_MAX:.4g}]: larger heights overflow double precision; got {sigma!r}")
+    z = _generator(seed).normal(0.0, sigma, n)
+    if not np.all(np.isfinite(z)):  # cannot happen below SIGMA_SAMPLE_MAX; never return inf heights
+        raise ValueError(f"sigma = {sigma!r} m gives heights beyond double precision")
+    return z
+
+
+def _generator(seed):
+    """numpy.random.default_rng(seed), with errors that name ``seed``: TypeError for a bool, a float
+    or another non-integer, ValueError for a negative or fractional number."""
+    if seed is None or isinstance(seed, (np.random.Generator, np.random.BitGenerator, np.random.SeedSequence)):
+        return np.random.default_rng(seed)
+    what = "seed must be None, an integer >= 0, a sequence of them, or a numpy.random.Generator"
+    if isinstance(seed, (bool, np.bool_)) or (isinstance(seed, (list, tuple)) and any(
+            isinstance(x, (bool, np.bool_)) for x in seed)):
+        raise TypeError(f"{what}; got {seed!r} (a bool is not a seed)")
+    if isinstance(seed, numbers.Real) and not isinstance(seed, numbers.Integral):
+        raise ValueError(f"{what}; got {seed!r} (not an integer)")
+    if isinstance(seed, numbers.Integral) and seed < 0:
+        raise ValueError(f"{what}; got {seed!r}")
+    try:
+        return np.random.default_rng(seed)
+    except TypeError as exc:
+        raise TypeError(f"{what}; got {seed!r} ({exc})") from None
+    except ValueError as exc:
+        raise ValueError(f"{what}; got {seed!r} ({exc})") from None
 
 
 @dataclass(frozen=True)
@@ -135,7 +168,8 @@ class GreenwoodWilliamson:
                              f"{self.A_n!r} m^2); N must be in [{MIN_SUMMITS:g}, {MAX_SUMMITS:g}]")
         if self.pdf is None:
             if self.sigma is None:
-                raise ValueError("sigma (m, standard deviation of summit heights) is required")
+                raise TypeError("sigma (m, standard deviation of summit heights) is required for the Gaussian "
+                                "(it may be omitted only with a user pdf)")
             if self.support is not None:
                 raise ValueError("support applies to a user pdf only (the Gaussian is integrated "
                                  "until its tail is negligible)")

@@ -7,7 +7,8 @@ import numpy as np
 
 from .. import forward as fw
 from .._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool,
-                           check_finite_positive, real_scalar, warn, warn_if_outside_validated)
+                           check_finite_positive, kernel_array, real_scalar, warn, warn_if_outside_validated)
+from ..energy import f_star_kernel
 from ..limits import interference_limit_message
 from ..materials import Impact, Material
 from ..unloading import unloading_code
@@ -98,7 +99,9 @@ class RoughSurface:
             self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
         except ValueError as exc:
             raise ValueError(f"R_a = {self.R_a!r} m: {exc}") from None
-        if (heights is None) == (gw is None):
+        if heights is None and gw is None:
+            raise TypeError("give heights= (explicit summits) or gw= (statistical): neither was given")
+        if heights is not None and gw is not None:
             raise ValueError("give exactly one of heights= (explicit summits) and gw= (statistical)")
         ip = self.impact_params
         self.eps_y, self.nu = float(ip.eps_y), float(ip.nu)
@@ -300,7 +303,7 @@ class RoughSurface:
         extrapolate = check_bool(extrapolate, "extrapolate")
         v = as_float_array(V1, "V1")
         shape = v.shape
-        flat = np.ascontiguousarray(v.ravel())
+        flat = kernel_array(v)
         bad = ~(np.isfinite(flat) & (flat > 0))
         if np.any(bad):
             raise ValueError(f"V1 must be finite and > 0 (m/s); got {flat[bad][0]!r} (at V1 = 0 no "
@@ -313,6 +316,7 @@ class RoughSurface:
                 f"the impact energy (1/2) M V1^2 at V1 = {float(flat[k])!r} m/s, M = {M!r} kg is "
                 f"{'too large' if not e_hi[k] < math.inf else 'too small'} against one summit's critical energy U_c = {self.U_c!r} J: "
                 f"(V1/V_c)^2 = {float(e_hi[k])!r} must be a finite, normal double")
+        self._check_energy_capacity(flat, M, e_hi, extrapolate)
         if flat.size == 0:
             raw = np.zeros((8, 0))
         elif self.kind == "explicit":
@@ -330,6 +334,26 @@ class RoughSurface:
 
         return RoughImpact(V1=shaped(flat), M=M, unloading=unloading, kind=self.kind,
                            **{k: shaped(a) for k, a in out.items()})
+
+    def _check_energy_capacity(self, flat, M, e_hi, extrapolate):
+        """ValueError naming V1 and M, with their range, for an impact energy above what all N
+        summits absorb with each at the end of the model (N F(w*_end) U_c: a bound, as every summit
+        lies at or below the tallest). Such an impact is certainly past the model's range; below
+        the bound the solver finds out (and says so) itself."""
+        w_end = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
+        cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu)  # over U_c
+        over = e_hi > cap
+        if not np.any(over):
+            return
+        k = int(np.flatnonzero(over)[0])
+        v, e_j = float(flat[k]), float(e_hi[k]) * self.U_c
+        cap_j = cap * self.U_c
+        raise ValueError(
+            f"the impact at V1 = {v!r} m/s (M = {M!r} kg) drives summits past the model's range: its energy "
+            f"(1/2) M V1^2 = {e_j:.6g} J exceeds {cap_j:.6g} J, the most the surface's N = {self.n_summits:.6g} "
+            f"summits can absorb before the tallest reaches w* = {w_end:.6g} "
+            f"({'a/R = 1' if extrapolate else 'JGM range'}). V1 must be below "
+            f"{math.sqrt(2.0 * cap_j / M):.6g} m/s at this M (M below {2.0 * cap_j / v**2:.6g} kg at this V1)")
 
     # --- solving: a Hertz estimate, then the JG law on a forward table grown as needed -----------
 
