@@ -63,17 +63,20 @@ def f_star_kernel(w, eps_y, nu):
 
 
 @jit
-def newton_from_below(vv, w, f, hi, eps_y, nu, C, B):
+def newton_from_below(vv, w, f, w_hi, eps_y, nu, C, B):
     """Solve F(w_m) = vv = V1*^2 (> F(1.9)) by Newton's method on ln F in t = ln w, from (w, f = F(w)).
 
     Start near the root (callers start from the Hertz solution V1*^0.8, which lies below it where
     P*_JG < Hertz, i.e. for nu above about 0.32, or from the previous root when marching). Where
     ln F is concave in t (most of the range) the iterates from below rise monotonically to the
-    root; elsewhere a step may overshoot, which the next steps correct (steps are clamped at e^hi). Each new F is
-    the previous one plus the integral over the (short) step. Returns (w_m, w_last, f_last) where
-    (w_last, f_last) is the last point evaluated, from which a caller marching through increasing
-    speeds continues. w_m is NaN if it would exceed e^hi.
+    root; elsewhere a step may overshoot, which the next steps correct (steps are clamped at w_hi
+    itself, not at e^(ln w_hi), which can lie a few ulp above it). Each new F is the previous one
+    plus the integral over the (short) step. Returns (w_m, w_last, f_last) where (w_last, f_last)
+    is the last point evaluated, from which a caller marching through increasing speeds continues.
+    w_m is NaN if it would exceed w_hi, and w_hi itself where the root lies within the iteration's
+    convergence (or rounding) of it: at the limit speed sqrt(F(w_hi)), w_m = w_hi exactly.
     """
+    hi = math.log(w_hi)
     t = math.log(w)
     for _ in range(60):
         # ln(F/V1*^2) and w e^dt, not ln F - 2 ln V1* and e^(t + dt): those carry the rounding of
@@ -83,14 +86,14 @@ def newton_from_below(vv, w, f, hi, eps_y, nu, C, B):
         dt = -g * f / (2.5 * w * p_star_jg(w, eps_y, nu, C, B))
         t_new = t + dt
         if t_new > hi:
-            if t == hi:
+            if w == w_hi:
                 # F(w_hi) < V1*^2: beyond the allowed range, unless by rounding only (V1* given as
                 # the limit itself, whose F was summed along another path)
                 return (w if g > -1e-14 else np.nan), w, f
             t_new = hi
-            w_new = math.exp(hi)
+            w_new = w_hi
         else:
-            w_new = w * math.exp(dt)
+            w_new = min(w * math.exp(dt), w_hi)
         if abs(dt) < 1e-9:
             return w_new, w, f  # quadratic convergence: the error of w_new is ~dt^2
         f += 2.5 * jg_integral(w, w_new, eps_y, nu, C, B)
@@ -118,9 +121,9 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
     t = max(math.log(W_SWITCH), 0.8 * math.log(v))
     if t > hi:
         return np.nan
-    w = math.exp(t)
+    w = min(math.exp(t), w_hi)
     f = F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, C, B)
-    return newton_from_below(v * v, w, f, hi, eps_y, nu, C, B)[0]
+    return newton_from_below(v * v, w, f, w_hi, eps_y, nu, C, B)[0]
 
 
 @jit
@@ -131,14 +134,13 @@ def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
     """
     C = c_of_nu(nu)
     B = area_exponent(eps_y)
-    hi = math.log(w_hi)
     w = W_SWITCH
     f = F_SWITCH
     for i in range(v.size):
         if not v[i] > V_SWITCH:
             out[i] = np.nan
             continue
-        out[i], w, f = newton_from_below(v[i] * v[i], w, f, hi, eps_y, nu, C, B)
+        out[i], w, f = newton_from_below(v[i] * v[i], w, f, w_hi, eps_y, nu, C, B)
 
 
 @jit

@@ -35,10 +35,12 @@ import numpy as np
 
 from ._jit import jit
 from ._validation import as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu, real_scalar
-from .contact import W_SWITCH
+from .contact import W_SWITCH, area_exponent, p_star_jg
+from .critical import c_of_nu
+from .energy import f_star_kernel, omega_m_kernel
 from .forward import P_table_forward, forward_data
 from .interpolation import cell_index, cell_polynomial
-from .limits import omega_limit, raise_interference_out_of_range, w_upper_model
+from .limits import omega_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
 from . import unloading as _unloading
 from .unloading import elastic
 
@@ -60,12 +62,13 @@ def contact_force(law, state, w):
     state : float64 array of :data:`STATE_SIZE`
         This contact's history; zeros for a virgin contact. Updated in place.
     w : float
-        Current interference (-); w <= 0 is a gap (force 0; after a contact, below w_res*).
+        Current interference (-); w <= 0 is a gap (force 0; after a contact, below w_res*). An
+        integer or float32 is taken as float64.
 
     Returns
     -------
     float
-        P* (-). NaN for NaN w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
+        P* (-). NaN for NaN or infinite w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
         the unloading model) or an unknown unloading model; the state is then set to NaN (the
         contact's history is lost: every later call gives NaN until the row is zeroed). A jit
         kernel: it never raises.
@@ -96,6 +99,7 @@ def contact_force(law, state, w):
     # field made the caller's loop ~15x slower (Numba materialises the tuple; bench/FORCE_LAW.md)
     model, eps_y, nu, w_end = law.model, law.eps_y, law.nu, law.w_max
     rows, shift, base = law.p_rows, law.shift, law.base
+    w = np.float64(w)  # integer and float32 interferences (the cell index reads float64 bits)
     w_max = state[0]
     if w > w_max:  # virgin loading, on the JG law (P_table_forward's rule)
         if w <= W_SWITCH:
@@ -114,9 +118,9 @@ def contact_force(law, state, w):
             w_res, delta = _unloading.residual(model, w_max, w_max - 1.0, state[1], eps_y, nu)
             state[2] = w_res
             state[3] = delta
-        if w == w:
+        if w > -math.inf:  # not NaN, not -inf
             return elastic.force(w, w_max, state[1], state[2], state[3])
-    elif w <= 0.0 and w_max == 0.0:  # a gap before first contact
+    elif w <= 0.0 and w > -math.inf and w_max == 0.0:  # a gap before first contact
         return 0.0
     state[0] = state[1] = state[2] = state[3] = np.nan  # left the model's domain: history lost
     return np.nan
@@ -140,8 +144,8 @@ def hertz_contact_time(v1_star):
     Returns
     -------
     float
-        tau_c (-); in seconds t_c = tau_c omega_c/V_c. ``inf`` at V1* = 0, NaN for a negative or NaN
-        V1* (a jit function: it never raises).
+        tau_c (-); in seconds t_c = tau_c omega_c/V_c. NaN for V1* <= 0, infinite or NaN (a jit
+        function: it never raises).
 
     Notes
     -----
@@ -159,10 +163,38 @@ def hertz_contact_time(v1_star):
     >>> round(hertz_contact_time(10.0), 6)
     1.857081
     """
-    return 2.0 * _HERTZ_HALF_TIME * v1_star ** -0.2
+    v = np.float64(v1_star)
+    if not (v > 0.0 and v < math.inf):  # tau_c would be inf (V1* = 0) or 0 (V1* = inf)
+        return math.nan
+    return 2.0 * _HERTZ_HALF_TIME * v ** -0.2
 
 
 _HERTZ_HALF_TIME = math.gamma(1.4) * math.sqrt(math.pi) / math.gamma(0.9)
+
+
+#: Below this V1* an impact is integrated in scaled units (:func:`impact_in_time`).
+SCALE_BELOW = 2.0**-5
+
+
+@jit
+def _law_formula(law, w):
+    """P*(w) of the loading law by its formulas: Hertz up to 1.9 (eq 14), eq (9) above."""
+    if w <= W_SWITCH:
+        return w * math.sqrt(w)
+    return p_star_jg(w, law.eps_y, law.nu, c_of_nu(law.nu), area_exponent(law.eps_y))
+
+
+@jit
+def _overshoot_force(law, state, w):
+    """Virgin loading past the law's end ``law.w_max`` during :func:`impact_in_time`: eq (9)
+    itself (Hertz up to 1.9), the law's analytic continuation. A step near the maximum
+    interference of an impact at a speed the model accepts overshoots it by O(dt^2); the force
+    there is the formula's, as for every other speed, instead of NaN."""
+    p = _law_formula(law, w)
+    state[0] = w
+    state[1] = p
+    state[3] = 0.0
+    return p
 
 
 @jit
@@ -174,18 +206,33 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
     ``locate_switch`` the step that crosses w = 1.9 on virgin loading (where the JG law jumps by
     ~0.16 %) is split there, which keeps the scheme second order; without, it is first order.
 
+    The caller checks that V1* reaches w_m* <= ``law.w_max`` (:meth:`ContactLaw.impact`); a step
+    that still passes ``law.w_max`` on virgin loading (the scheme overshoots the maximum
+    interference by O(dt^2)) takes the law's formula there (:func:`_overshoot_force`). Below
+    :data:`SCALE_BELOW` (Hertz contact only, w_m* < 1/16) the impact is integrated in units scaled
+    by powers of two, w = 2^(4k) x, tau = 2^(-k) s, V1* = 2^(5k) V' with V' in (2^-10, 2^-5]: the
+    Hertz law is invariant under it and the scaling is exact, so tiny speeds (down to the smallest
+    double) integrate without forces underflowing.
+
     Returns (e, w_max, steps): rebound speed over impact speed, largest interference, steps taken;
-    e is NaN if a step went past the law's end (w_max is then the interference it tried: a coarse
-    step overshoots the maximum interference by O(dt^2)). ``state`` (STATE_SIZE) is reset and
-    left as the contact's final history.
+    e is NaN if the force was NaN (a NaN input, or the unloading model's end passed). ``state``
+    (STATE_SIZE) is reset and left as the contact's final history.
     """
     for k in range(STATE_SIZE):
         state[k] = 0.0
-    dt = hertz_contact_time(v1_star) / steps_per_contact
+    scale = 0
+    if v1_star < SCALE_BELOW:
+        scale = int(math.ceil(math.log2(v1_star) / 5.0)) + 1
+        while math.ldexp(v1_star, -5 * scale) > SCALE_BELOW:  # log2's rounding
+            scale += 1
+    v0 = math.ldexp(v1_star, -5 * scale)
+    dt = hertz_contact_time(v0) / steps_per_contact
+    w_end = law.w_max
     w = 0.0
-    v = v1_star
+    v = v0
     a = 0.0
     n = 0
+    e = np.nan
     while n < 1000 * steps_per_contact:
         n += 1
         h = dt
@@ -199,19 +246,30 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
             a1 = -1.25 * contact_force(law, state, W_SWITCH)
             v += 0.5 * (a + a1) * t1
             w = W_SWITCH
-            a = -1.25 * P_table_forward(law, np.nextafter(W_SWITCH, math.inf))
+            a = -1.25 * (P_table_forward(law, np.nextafter(W_SWITCH, math.inf)) if w_end > W_SWITCH
+                         else _law_formula(law, np.nextafter(W_SWITCH, math.inf)))
             h = dt - t1
             w_new = w + v * h + 0.5 * a * h * h
-        p = contact_force(law, state, w_new)
+        if w_new > w_end and w_new > state[0] and w_new > W_SWITCH:
+            p = _overshoot_force(law, state, w_new)
+        else:
+            p = contact_force(law, state, w_new)
         a_new = -1.25 * p
         v += 0.5 * (a + a_new) * h
         w = w_new
         a = a_new
         if p != p:
-            return np.nan, w_new, n  # past the law's end (or NaN): the interference it tried
+            break  # NaN: the interference it tried is returned
         if p == 0.0 and v < 0.0 and n > 1:
-            return -v / v1_star, state[0], n
-    return np.nan, state[0], n
+            e = -v / v0
+            break
+    w_top = state[0] if e == e else w
+    if scale != 0:
+        for k in (0, 2, 3):
+            state[k] = math.ldexp(state[k], 4 * scale)
+        state[1] = math.ldexp(state[1], 6 * scale)
+        w_top = math.ldexp(w_top, 4 * scale)
+    return e, w_top, n
 
 
 class ContactLaw:
@@ -364,6 +422,16 @@ class ContactLaw:
                                             self.extrapolate, "interference", self.unloading)
         return (out * self.P_c).reshape(x.shape)
 
+    def _raise_too_fast(self, v):
+        """The ValueError for a V1* whose maximum interference w_m* (JGM eq 29) passes the law's end."""
+        full = omega_limit(self.eps_y, self.nu, extrapolate=self.extrapolate, unloading=self.unloading)
+        if self.w_max < full:
+            v_top = math.sqrt(f_star_kernel(self.w_max, self.eps_y, self.nu))
+            raise ValueError(f"v1_star = {v!r} gives w_m* beyond this law's w_max = {self.w_max!r}: it takes "
+                             f"0 < v1_star <= {v_top:.10g} (V1*^2 = F(w_max), JGM eq 29); build the law with a "
+                             "larger w_max (contact_law(..., w_max=...))")
+        raise_out_of_range(v, self.eps_y, self.nu, self.extrapolate, "v1_star", unloading=self.unloading)
+
     def impact(self, v1_star, *, steps_per_contact=2000, locate_switch=True):
         """e of one impact at V1* integrated in time with this law (:func:`impact_in_time`).
 
@@ -372,7 +440,10 @@ class ContactLaw:
         Parameters
         ----------
         v1_star : float
-            Normalised impact speed V1/V_c (-), finite and > 0.
+            Normalised impact speed V1/V_c (-), finite and > 0, up to the speed whose w_m* is the
+            law's ``w_max`` (:func:`fastrest.direct.v1_star_limit` for a law built to the model's
+            end). Speeds below 2^-5 are integrated in scaled units (exact for the Hertz law), so
+            tiny ones (1e-300) give e = 1 to the scheme's accuracy.
         steps_per_contact : int, optional
             Velocity-Verlet steps per Hertz contact duration (:func:`hertz_contact_time`), a whole
             number in [10, 1e8]; default 2000.
@@ -383,8 +454,10 @@ class ContactLaw:
         Returns
         -------
         dict
-            ``"e"`` (rebound over impact speed, -), ``"omega_m_star"`` (largest interference w*,
-            -), ``"steps"`` (int) and the contact's final ``"state"`` (ndarray).
+            ``"e"`` (rebound over impact speed, -), ``"omega_m_star"`` (largest interference w*
+            the integration reached, -: the energy balance's w_m* plus the scheme's O(dt^2)
+            error, so near the limit speed it can pass ``w_max`` slightly, where the step takes
+            the law's formula), ``"steps"`` (int) and the contact's final ``"state"`` (ndarray).
 
         Raises
         ------
@@ -392,9 +465,10 @@ class ContactLaw:
             ``v1_star`` or ``steps_per_contact`` not a single real number; ``locate_switch`` not
             True or False.
         ValueError
-            v1_star not finite and > 0; ``steps_per_contact`` not a whole number in [10, 1e8]; an
-            impact whose interference passes the law's end (``w_max``; near that speed a coarse
-            step overshoots: take more steps).
+            v1_star not finite and > 0, or past the speed whose w_m* (JGM eq 29) reaches the law's
+            end ``w_max`` (the message names that speed; the same rule as :mod:`fastrest.direct`,
+            so every speed the direct solver and the curves accept integrates, whatever
+            ``steps_per_contact``); ``steps_per_contact`` not a whole number in [10, 1e8].
 
         Notes
         -----
@@ -416,16 +490,14 @@ class ContactLaw:
         n = real_scalar(steps_per_contact, "steps_per_contact")
         if not (n.is_integer() and 10 <= n <= 1e8):
             raise ValueError(f"steps_per_contact must be a whole number in [10, 1e8]; got {steps_per_contact!r}")
+        if not omega_m_kernel(v, self.eps_y, self.nu, self.w_max) >= 0.0:  # the direct solver's rule
+            self._raise_too_fast(v)
         state = self.new_state()
         e, wm, steps = impact_in_time(self.data, v, int(n), check_bool(locate_switch, "locate_switch"), state)
         if not e == e:
-            try:
-                raise_interference_out_of_range(max(wm, self.w_max * (1 + 1e-15)), self.eps_y, self.nu,
-                                                self.extrapolate, "the impact's interference", self.unloading)
-            except ValueError as exc:
-                raise ValueError(f"{exc} (at V1* = {v!r} with {int(n)} steps per contact; near the "
-                                 "limit speed a coarse step overshoots the maximum interference: take "
-                                 "more steps)") from None
+            raise ValueError(f"the impact at V1* = {v!r} with {int(n)} steps per contact left the law "
+                             f"(interference {wm!r}, state {state.tolist()}): the unloading model's "
+                             "residual is undefined there; take more steps")
         return {"e": float(e), "omega_m_star": float(wm), "steps": int(steps), "state": state}
 
 

@@ -41,8 +41,52 @@ def test_table_edge_near_the_limit_speed_within_1e9():
 def test_table_records_its_adversarial_error():
     me = fastrest.load_table().attrs["measured_error"]
     for name, d in me.items():
-        assert d["max_error"] <= 0.75e-9, (name, d)   # built to 1e-9 with a 0.75 safety factor
+        assert d["max_error"] <= tables.error.SAFETY * 1e-9, (name, d)   # built to 1e-9 with its safety factor
         assert "metric" in d
+
+
+def test_stored_error_is_the_worst_found_not_a_samples_maximum():
+    """Issue 20, item 6: a local search between nu nodes on the eps_y = 0.01 edge in the last cell
+    found e off by 8.5e-10 (Etsion; Brake 8.4e-10, JCG 5.7e-10) where the file stated 5.1e-10 (the
+    build's sample missed the peak by 1.66x). The stated error must cover it."""
+    t = fastrest.load_table()
+    me = t.attrs["measured_error"]
+    v, eps, nu = 800.8670058701113, 0.01, 0.44606368972458
+    for m in ("jcg", "etsion", "brake"):
+        err = rel(fastrest.e_star(v, eps, nu, m), direct.e_star(v, eps, nu, m))
+        assert err <= me[f"e_{m}"]["max_error"], (m, err, me[f"e_{m}"]["max_error"])
+    assert me["e_etsion"]["max_error"] >= 8.5e-10
+
+
+def test_measure_finds_the_worst_of_a_dense_brute_force_search():
+    """measure() climbs from its sample's worst points to the top of the error's hump: on a small
+    table, from a coarse sample, it finds at least the worst of a dense grid (V1* x eps_y) over the
+    cell and edge where that table's e is worst; the coarse sample alone does not."""
+    grid = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35, n_nu=6,
+                bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6)
+    t = tables.Table(tables.generate(grid, progress=False))
+    # dense: the cell [512, 768] (one cell per octave above 16 here) on the nu = 0.35 edge
+    V, E = np.meshgrid(np.geomspace(512.0, 768.0, 301), np.linspace(0.004, 0.006, 81), indexing="ij")
+    v, e = V.ravel(), E.ravel()
+    brute = rel(_interpolant(t, 1, v, e, 0.35), direct.e_star(v, e, 0.35)).max()
+    # coarse: cell midpoints of 3 x 3 materials
+    mids = 0.5 * (t.cell_edges[:, 0] + t.cell_edges[:, 1])
+    mats = [(a, b) for a in (0.004, 0.005, 0.006) for b in (0.3, 0.325, 0.35)]
+    pts = [(s, np.full(s.size, a), np.full(s.size, b)) for a, b in mats
+           for s in [mids[mids < direct.v1_star_limit(a, b)]]]
+    pts = tuple(np.concatenate(x) for x in zip(*pts))
+    sample = rel(_interpolant(t, 1, *pts), direct.e_star(*pts)).max()
+    assert sample < brute  # what a sample's maximum misses
+    assert tables.error.measure(t, pts)["e_jcg"]["max_error"] >= brute
+
+
+def _interpolant(t, q, v, e, n):
+    from fastrest.tables.kernel import interpolant_array
+
+    v, e, n = (np.ascontiguousarray(np.broadcast_to(x, np.shape(v)), dtype=float) for x in (v, e, n))
+    out = np.empty(v.size)
+    interpolant_array(t.data, q, v, e, n, out)
+    return out
 
 
 # 2. sign-changing 1 - e^2 ------------------------------------------------------------------------
@@ -184,6 +228,7 @@ def test_inaccurate_table_warns_on_build_and_load(tmp_path):
         fastrest.load_table(path, tol=1e-6)
 
 
+@pytest.mark.slow
 def test_build_to_tolerance_meets_it_or_says_what_it_reached(tmp_path):
     t = tables.build(tmp_path / "t.h5", SMALL, progress=False, tol=1e-7)
     me = t.attrs["measured_error"]

@@ -301,3 +301,50 @@ def test_dem_example_reproduces_isolated_impacts():
     e_dem, e_curve, _, _ = mod.run(n_particles=40, steps_per_contact=2000)
     assert np.all(np.isfinite(e_dem))
     assert np.max(np.abs(e_dem / e_curve - 1)) < 1e-5
+
+
+# --- issue 20: every speed the other APIs accept integrates --------------------------------------
+
+def test_limit_speed_integrates_with_any_step_count():
+    """direct.v1_star_limit is accepted by the direct solver and the curves: the time-stepped impact
+    there must integrate too, whatever the step (Verlet overshoots w_m* = 425 by O(dt^2); it used to
+    raise), and land on the energy balance's e to the scheme's accuracy."""
+    law = fastrest.contact_law(0.01, 0.45)
+    lim = direct.v1_star_limit(0.01, 0.45)
+    ref = direct.e_star(lim, 0.01, 0.45)
+    for n, tol in ((10, 1e-2), (13, 1e-2), (2000, 1e-6), (STEPS_1E8, 1e-8)):
+        r = law.impact(lim, steps_per_contact=n)
+        assert abs(r["e"] / ref - 1) < tol, n
+        assert abs(r["omega_m_star"] / 425.0 - 1) < 10 * tol, n
+    for m in ("etsion", "brake"):
+        r = fastrest.contact_law(0.01, 0.2, m).impact(direct.v1_star_limit(0.01, 0.2), steps_per_contact=37)
+        assert math.isfinite(r["e"])
+    # a speed past the limit is refused before integrating, naming the limit speed
+    with pytest.raises(ValueError, match=r"v1_star = .* w_m\* > 425.*V1\* = 818\.47"):
+        law.impact(lim * (1 + 1e-9))
+
+
+def test_force_accepts_the_direct_solvers_w_m_at_the_limit_speed():
+    """direct.omega_m_star at the limit speed was 425 + 5 ulp (the Newton step clamped through
+    e^(ln 425)); it is 425 (the solver clamps at w_hi itself), which the law serves."""
+    for eps, nu in ((0.01, 0.45), (0.005, 0.33), (0.0005, 0.2), (0.01, 0.2)):
+        lim = direct.v1_star_limit(eps, nu)
+        wm = direct.omega_m_star(lim, eps, nu)
+        assert wm <= 425.0
+        law = fastrest.contact_law(eps, nu)
+        assert law.force([wm])[0] == pytest.approx(fastrest.P_star(wm, eps, nu), rel=1e-13)
+
+
+def test_tiny_speed_integrates_and_a_law_with_small_w_max_names_its_own_limit():
+    """V1* = 1e-300 is a valid speed (e = 1, elastic): it integrated into nonsense (forces
+    underflow) and reported an interference of 100.00000000000011 beyond w* = 425."""
+    law = fastrest.contact_law(0.005, 0.33, w_max=100)
+    ref = law.impact(0.5)
+    for v in (1e-300, 5e-324, 1e-200, 2.0**-5, 0.03):
+        r = law.impact(v)
+        assert abs(r["e"] - 1.0) < 1e-10, v
+        assert r["omega_m_star"] == pytest.approx(v**0.8, rel=1e-6), v
+    assert abs(ref["e"] - 1.0) < 1e-10
+    with pytest.raises(ValueError, match=r"v1_star = 1000.0 gives w_m\* beyond this law's w_max = 100.0: "
+                                         r"it takes 0 < v1_star <= 226.30"):
+        law.impact(1000.0)
