@@ -11,6 +11,7 @@ Table.measure_error).
 import json
 import math
 import os
+import platform
 import shutil
 import signal
 import subprocess
@@ -29,6 +30,15 @@ from fastrest.tables.hdf5_read import read_table
 from damaged_corpus import reseal
 
 REPO = Path(__file__).resolve().parents[1]
+
+
+def _cpu_features():
+    try:
+        from numpy._core._multiarray_umath import __cpu_features__ as features
+    except ImportError:  # NumPy 1.x
+        from numpy.core._multiarray_umath import __cpu_features__ as features
+    return features
+
 V_SWITCH = 1.9 ** 1.25
 EPS_RANGE = (0.0005, 0.01)
 NU_RANGE = (0.2, 0.45)
@@ -193,6 +203,7 @@ def test_broadcasting_over_all_three_arguments():
                           ).max() <= TOL_TABLE[q]
 
 
+@pytest.mark.slow
 def test_large_batch_parallel_path_matches_serial():
     """Batches of PARALLEL_MIN_POINTS or more points go through the parallel kernel: the same
     numbers as small batches, and the same errors."""
@@ -277,10 +288,40 @@ def test_past_425_raises(eps, nu):
 # ============================================================================================
 # The shipped table is what the generator produces
 
+#: Platforms where the shipped table's arrays are reproduced bit for bit: x86-64 with glibc, whose
+#: exp/log/pow take their FMA code paths there (as on the machine that built the file). Masking
+#: glibc's FMA paths (GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA,-AVX2,...) moves ~10 % of the stored
+#: values by 1-6 ulp (worst 1.9e-13 relative, an Etsion 1 - e^2 near its zero).
+BIT_FOR_BIT_PLATFORM = (platform.machine() in ("x86_64", "AMD64") and platform.libc_ver()[0] == "glibc"
+                        and _cpu_features().get("FMA3", False))
+#: Elsewhere: the arrays to this many ulp-sized relative steps (1e-12 relative, 1e-15 absolute).
+ARRAY_RTOL, ARRAY_ATOL = 1e-12, 1e-15
+#: The stored measured errors (~1e-10) are differences of two values of order 1 that each carry the
+#: platform's libm rounding (a few ulp, 2.2e-16 each): compared to 1e-14 absolute. The audit saw
+#: 1.4e-16 (the same versions on another AVX-512 machine); masking glibc's FMA paths, 1.8e-16.
+MEASURED_ERROR_ATOL = 1e-14
+
+
+def _compare_measured_errors(a, b):
+    """The measured-error diagnostics of two builds agree to MEASURED_ERROR_ATOL (not their last bits,
+    and not the sample point of a maximum, which may move between two points within that tolerance)."""
+    assert sorted(a) == sorted(b)
+    for q in a:
+        x, y = a[q], b[q]
+        assert x["metric"] == y["metric"], q
+        for key in ("max_error", "max_rel_error", "max_abs_error"):
+            assert abs(x[key] - y[key]) <= MEASURED_ERROR_ATOL, (q, key, x[key], y[key])
+        assert len(x["by_block"]) == len(y["by_block"]), q
+        for i, (u, v) in enumerate(zip(x["by_block"], y["by_block"])):
+            assert abs(u - v) <= MEASURED_ERROR_ATOL, (q, i, u, v)
+
+
 def test_shipped_default_table_matches_generator(tmp_path):
-    """`fastrest build --default` is bit-reproducible: a fresh build gives the shipped file byte for
-    byte (arrays, measured error, header). The grid axes avoid NumPy's vectorised exp/log/log1p,
-    whose last bit depends on the CPU's instruction set (AVX-512 or not)."""
+    """`fastrest build --default` reproduces the shipped file: its arrays bit for bit (on
+    BIT_FOR_BIT_PLATFORM; elsewhere to ARRAY_RTOL), every attribute equal except the measured-error
+    diagnostics, which agree to MEASURED_ERROR_ATOL, and the checksum, which follows the arrays. The
+    grid axes avoid NumPy's vectorised exp/log/log1p, whose last bit depends on the CPU's
+    instruction set (AVX-512 or not)."""
     shipped = tables.default_table_path()
     regen = tmp_path / "regen.h5"
     tables.build(regen, None, progress=False)
@@ -292,12 +333,32 @@ def test_shipped_default_table_matches_generator(tmp_path):
         for name in group_b:
             x, y = group_a[name], group_b[name]
             assert x.shape == y.shape and x.dtype == y.dtype, name
-            assert x.tobytes() == y.tobytes(), name   # bit for bit, NaNs included
+            if BIT_FOR_BIT_PLATFORM:
+                assert x.tobytes() == y.tobytes(), name   # bit for bit, NaNs included
+            else:
+                np.testing.assert_allclose(x, y, rtol=ARRAY_RTOL, atol=ARRAY_ATOL, equal_nan=True, err_msg=name)
     assert a.dims == b.dims
-    assert a.attrs == b.attrs
+    derived = {"measured_error"} | ({"checksum"} if not BIT_FOR_BIT_PLATFORM else set())
+    assert {k: v for k, v in a.attrs.items() if k not in derived} == \
+        {k: v for k, v in b.attrs.items() if k not in derived}
+    _compare_measured_errors(a.attrs["measured_error"], b.attrs["measured_error"])
     assert a.attrs["grid"] == tables.normalise_grid(None)
     assert a.attrs["format_version"] == hdf5.FORMAT_VERSION
-    assert shipped.read_bytes() == regen.read_bytes()
+
+
+def test_measured_error_comparison_tolerates_rounding_only():
+    """The comparison above passes the audit's two builds (4.918195017911131e-10 against
+    4.918196405689912e-10 for loss_brake's block 0) and fails a real change of accuracy (1.1x)."""
+    base = fastrest.load_table().attrs["measured_error"]
+    audit_a = json.loads(json.dumps(base))
+    audit_b = json.loads(json.dumps(base))
+    audit_a["loss_brake"]["by_block"][0] = 4.918195017911131e-10
+    audit_b["loss_brake"]["by_block"][0] = 4.918196405689912e-10
+    _compare_measured_errors(audit_a, audit_b)
+    worse = json.loads(json.dumps(base))
+    worse["e_jcg"]["max_error"] *= 1.1
+    with pytest.raises(AssertionError):
+        _compare_measured_errors(base, worse)
 
 
 def _build_in_subprocess(out, env_extra):
