@@ -81,13 +81,13 @@ LIMIT_MARGIN = 2e-9
 
 
 def _limit(eps, nu):
-    return direct.v1_star_limit(eps, nu) * (1 - LIMIT_MARGIN)
+    return fastrest.limit(eps, nu).v1_star * (1 - LIMIT_MARGIN)
 
 
 def table_quantity(name, v, e, n):
     """(table value, direct value, floored) of one table quantity at points."""
     if name == "omega_m_star":
-        return fastrest.omega_m_star(v, e, n), direct.omega_m_star(v, e, n), False
+        return fastrest.omega_m_star(v, e, n), direct.omega_m_exact(v, e, n), False
     kind, m = name.split("_")
     s = direct.solve(v, e, n, m)
     if kind == "e":
@@ -276,7 +276,7 @@ def sweep_curves(cfg, log):
                 merge(ext[m], curve_errors(c, eps, nu, m, v, lo, c.v_max, True, cfg), eps, nu)
         # the table's cell boundaries for this material (inside its range)
         t = fastrest.load_table()
-        lim = direct.v1_star_limit(eps, nu)
+        lim = fastrest.limit(eps, nu).v1_star
         inner = t.cell_edges[1:, 0]
         inner = inner[inner < lim * 0.999]
         for f, d in ((lambda x: fastrest.omega_m_star(x, eps, nu), 1), (lambda x: fastrest.e_star(x, eps, nu), -1)):

@@ -19,7 +19,7 @@ REPO = Path(__file__).resolve().parent.parent
 FIRST_USE = {
     "fastrest.e_star(5.0, 0.005, 0.33)": "fastrest.e_star(5.0, 0.005, 0.33)",
     "fastrest.curve(0.005, 0.33).e(5.0)": "fastrest.curve(0.005, 0.33).e(5.0)",
-    "fastrest.direct.e_star(5.0, 0.005, 0.33)": "fastrest.direct.e_star(5.0, 0.005, 0.33)",
+    "fastrest.direct.e_exact(5.0, 0.005, 0.33)": "fastrest.direct.e_exact(5.0, 0.005, 0.33)",
     "fastrest.e_star, 1e5 points (parallel kernel)":
         "import numpy as np; fastrest.e_star(np.full(100000, 5.0), 0.005, 0.33)",
     "fastrest.scene([...], v_max=20).e(5.0, 1)": "fastrest.scene([(0.005, 0.33), (0.003, 0.3)], v_max=20.0).e(5.0, 1)",

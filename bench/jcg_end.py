@@ -2,8 +2,8 @@
 
 Extrapolating far past w_m* = 425 (small eps_y), eq (35)'s w_res/w_m reaches 1 at w_m* = 10017.5
 and e ~ sqrt(distance to the end). For speeds V1* = (1 - d) x the end speed
-(``direct.v1_star_limit(..., extrapolate=True, unloading="jcg")``), prints the relative error of
-``direct.e_star`` and of R_res/R (``direct.solve``) against the 40-digit reference of
+(``fastrest.limit(..., "jcg", extrapolate=True).v1_star``), prints the relative error of
+``direct.e_exact`` and of R_res/R (``direct.solve``) against the 40-digit reference of
 ``tests/reference.py`` (the model with the paper's decimal constants), and the change of the exact e
 for one ulp of V1* (the problem's own conditioning). Quoted in README ("What is not done yet") and
 docs/model.md section 7.
@@ -33,7 +33,7 @@ def main():
     print("|---|---|---|---|---|---|---|---|")
     worst = 0.0
     for eps, nu in MATERIALS:
-        end = direct.v1_star_limit(eps, nu, extrapolate=True, unloading="jcg")
+        end = fastrest.limit(eps, nu, "jcg", extrapolate=True).v1_star
         for d in DISTANCES:
             v = float(end * (1 - d))
             with warnings.catch_warnings():

@@ -89,4 +89,4 @@ def table_chain(tab, v, eps_y, nu):
 @nb.njit(cache=True)
 def scene_loop(scene, k, v, out):
     for i in range(v.size):
-        out[i] = frj.e_scene(scene, k[i], v[i])
+        out[i] = frj.e_material(scene, v[i], k[i])

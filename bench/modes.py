@@ -11,7 +11,6 @@ import fastrest
 from fastrest import models, tables
 from fastrest.curve import Curve
 from fastrest.curve_data import BITS_PER_OCTAVE, build_curve_data
-from fastrest.direct import v1_star_limit
 from fastrest.tables.kernel import table_array
 
 from . import kernels
@@ -86,7 +85,7 @@ def scalar(cfg, c, log):
         "Curve.omega_m(5.0)": "c.omega_m(5.0)",
         "Curve.e(500.0)": "c.e(500.0)",
         "fastrest.e_star(5.0, 0.005, 0.33)": "fastrest.e_star(5.0, 0.005, 0.33)",
-        "fastrest.direct.e_star(5.0, 0.005, 0.33)": "fastrest.direct.e_star(5.0, 0.005, 0.33)",
+        "fastrest.direct.e_exact(5.0, 0.005, 0.33)": "fastrest.direct.e_exact(5.0, 0.005, 0.33)",
         "fit jgm_fit_jcg_kernel(5.0, 0.005) (Numba dispatcher)": "fit(5.0, 0.005)",
         "fit models.jgm_fit_jcg(5.0, 0.005) (NumPy)": "models.jgm_fit_jcg(5.0, 0.005)",
     }
@@ -211,7 +210,7 @@ def build_times(cfg, log):
         errs[name]["v_max"] = float(cv.v_max)
     log("  one curve ...")
     cases = {k: (f, 1) for k, f in variants.items()}
-    v = _speeds(10**5, v1_star_limit(EPS, NU))
+    v = _speeds(10**5, fastrest.limit(EPS, NU).v1_star)
     o = np.empty(v.size)
     cases["fit kernel, 1e5 points"] = ((lambda: models.jgm_fit_jcg_array(v, np.array([EPS]), o)), v.size)
     tm = interleaved(cases, cfg["curve_repeats"], min_block=0.0, seed=11)

@@ -134,13 +134,13 @@ CASES = [("e_star", "fastrest.e_star, {threads} threads", "fit kernel"),
 
 def make_points(n, seed=SEED):
     """The two point sets as a dict of arrays (see the module docstring)."""
-    from fastrest.direct import v1_star_limit
+    import fastrest
     rng = np.random.default_rng(seed + 40)
     e = rng.uniform(0.0005, 0.01, n)
     nu = rng.uniform(0.2, 0.45, n)
     # V1*_max on a coarse material grid, bilinear: only sets the speed range (refused points are dropped)
     ge, gn = np.linspace(0.0005, 0.01, 20), np.linspace(0.2, 0.45, 11)
-    lim = np.array([[v1_star_limit(a, b) for b in gn] for a in ge])
+    lim = np.array([[fastrest.limit(a, b).v1_star for b in gn] for a in ge])
     ie = np.clip(np.searchsorted(ge, e) - 1, 0, ge.size - 2)
     jn = np.clip(np.searchsorted(gn, nu) - 1, 0, gn.size - 2)
     te, tn = (e - ge[ie]) / (ge[1] - ge[0]), (nu - gn[jn]) / (gn[1] - gn[0])

@@ -10,7 +10,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from fastrest._validation import EPS_Y_VALIDATED, NU_VALIDATED
-from fastrest.direct import impact_array, v1_star_limit
+import fastrest
+from fastrest.direct import impact_array
 from fastrest.energy import V_SWITCH
 from fastrest.unloading import ETSION, JCG
 
@@ -59,7 +60,7 @@ def materials(n_materials, seed=SEED):
     k = max(0, n_materials - len(fixed))
     eps = np.concatenate([[f[0] for f in fixed], rng.uniform(lo_e, hi_e, k)])[:n_materials]
     nu = np.concatenate([[f[1] for f in fixed], rng.uniform(lo_n, hi_n, k)])[:n_materials]
-    vmax = np.array([v1_star_limit(a, b) for a, b in zip(eps, nu)])
+    vmax = np.array([fastrest.limit(a, b).v1_star for a, b in zip(eps, nu)])
     return eps, nu, vmax
 
 

@@ -136,7 +136,7 @@ def headline(R):
          f"{fmt_ratio(mm['Scene.e (material index per point)']['ratio_to_ref'])} / "
          f"{fmt_ratio(mm['e_scene loop (jit) throughput']['ratio_to_ref'])}", "as `Curve`"]
         if "Scene.e (material index per point)" in mm else None,
-        ["`fastrest.direct.e_star` (exact solver)", f"{fmt_time(by['direct']['time_median'], 'us')}/point",
+        ["`fastrest.direct.e_exact` (exact solver)", f"{fmt_time(by['direct']['time_median'], 'us')}/point",
          fmt_ratio(by["direct"]["ratio"]),
          f"{fmt_err(by['direct']['error'])} (vs 40-digit mpmath)" if by["direct"]["error"] is not None else "reference"],
         ["JGM closed-form fit (43)-(44), Numba (the speed reference)", f"{ns(fit['time_median'])}/point", "1x",

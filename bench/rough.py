@@ -172,8 +172,8 @@ def _loop_values(data, w):
 
 def bench_forward(rounds):
     eps, nu = STEEL.Sy / (STEEL.E / (1 - STEEL.nu**2)), STEEL.nu
-    build = timed({"build": lambda: fw.forward_data(eps, nu, 425.0)}, rounds)["build"]
-    data = fw.forward_data(eps, nu, 425.0)
+    build = timed({"build": lambda: fw.forward_data(eps, nu, w_max=425.0)}, rounds)["build"]
+    data = fw.forward_data(eps, nu, w_max=425.0)
     w_jg = np.random.default_rng(0).uniform(1.9, 425.0, 10**6)
     w_h = np.random.default_rng(0).uniform(0.0, 1.9, 10**6)
     cases = {}

@@ -2,12 +2,12 @@
 
     python -m bench.rough_onset          # from the repository root; prints a markdown table
 
-Public API only (``RoughSurface.impact``, ``direct.loss_star``) and the 40-digit reference of
+Public API only (``RoughSurface.impact``, ``direct.loss_exact``) and the 40-digit reference of
 ``tests/rough_reference.py``, so the script runs against any version of ``fastrest.rough``. For
 each case it reports the largest relative error of 1 - e_s^2 over a few speeds an ulp apart:
 
 * one summit at V1* = 1 + x, with M = U_c/2 so that V_c = 2 m/s exactly and V1 = 2 V1* carries
-  V1* exactly (reference: ``direct.loss_star``, exact there), and with M = 1e-6 kg (reference:
+  V1* exactly (reference: ``direct.loss_exact``, exact there), and with M = 1e-6 kg (reference:
   the 40-digit solution for the exact energy M V1^2 / (2 U_c) of the given doubles);
 * clusters of summits around the onset (the tallest at w* = 1 + x, others within a few x of it,
   the rest out of contact), a tallest summit well into yield (w* = 1.5) beside summits just past
@@ -36,7 +36,7 @@ def single_exact(x):
     M = s.U_c / 2
     v = 1.0 + x + np.arange(-15, 16) * 2.0**-52
     r = s.impact(2.0 * v, M)
-    return float(np.max(np.abs(r.loss / direct.loss_star(v, s.eps_y, s.nu) - 1)))
+    return float(np.max(np.abs(r.loss / direct.loss_exact(v, s.eps_y, s.nu) - 1)))
 
 
 def single_any_mass(x, M=1e-6):
@@ -88,7 +88,7 @@ def sensitivity(x, M=1e-6):
 def main():
     print("| case | " + " | ".join(f"x = {x:g}" for x in ONSET) + " |")
     print("|---|" + "---|" * len(ONSET))
-    print("| one summit, V1* = 1 + x, V_c = 2 m/s (vs direct.loss_star) | "
+    print("| one summit, V1* = 1 + x, V_c = 2 m/s (vs direct.loss_exact) | "
           + " | ".join(f"{single_exact(x):.1e}" for x in ONSET) + " |")
     print("| one summit, V1* = 1 + x, M = 1e-6 kg (vs 40 digits) | "
           + " | ".join(f"{single_any_mass(x):.1e}" for x in ONSET) + " |")

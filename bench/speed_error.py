@@ -89,7 +89,7 @@ def direct_vs_mpmath(ps, n, seed=7):
     for i in idx:
         v, e, nu = float(ps.v[i]), float(ps.eps_y[i]), float(ps.nu[i])
         exact = mpref.ref_e_star(v, e, nu, "jcg")
-        got = fastrest.direct.e_star(v, e, nu)
+        got = fastrest.direct.e_exact(v, e, nu)
         worst_err = max(worst_err, abs(got - exact) / abs(exact))
     return {"max_rel_error": worst_err, "points": int(idx.size)}
 
@@ -159,7 +159,7 @@ def run(cfg, log=print):
         "fit4344_numpy": ((lambda: models.jgm_fit_jcg(v, e)), N),
         "fit45_numba": ((lambda: kernels.fit45_loop(v, e, out)), N),
         "fit45_numpy": ((lambda: models.jgm_fit_etsion(v, e)), N),
-        "direct": ((lambda: fastrest.direct.e_star(vd, ed, nud)), nd),
+        "direct": ((lambda: fastrest.direct.e_exact(vd, ed, nud)), nd),
         "table_default": ((lambda: fastrest.e_star(v, e, n)), N),
         "table_default_1t": (with_threads(1, lambda: fastrest.e_star(v, e, n)), N),
     }
@@ -181,7 +181,7 @@ def run(cfg, log=print):
                             error_of=error_of, default=default, n_evals=t.n_evals,
                             timing={"other_cores": t.other_cores}, **extra))
 
-    add("direct", "direct solver (fastrest.direct.e_star)", "direct",
+    add("direct", "direct solver (fastrest.direct.e_exact)", "direct",
         d_err["max_rel_error"] if d_err else None,
         f"vs 40-digit mpmath, {d_err['points']} points" if d_err else "reference (mpmath unavailable)")
     for bits in cfg["curve_bits"]:

@@ -26,27 +26,30 @@ normalised form (V1* = V1/V_c, eps_y = Sy/E'):
 >>> impact = fastrest.Impact(steel, R=0.01, mass=0.0327)
 >>> round(impact.e(1.0), 4)
 0.7501
->>> round(fastrest.direct.e_star(10.0, 0.005, 0.33), 6)
+>>> round(fastrest.direct.e_exact(10.0, 0.005, 0.33), 6)
 0.828733
 """
 import importlib
 
 from ._version import __version__
+from ._deprecation import alias as _alias, module_getattr as _module_getattr
 from ._validation import ValidityWarning, ExtrapolationWarning
 from .materials import Material, poisson_factor, critical_velocity_ratios
 from .impact import Impact
 from .contact import P_star, A_star, omega_star_limit
 from .energy import W_star, loading_energy
+from .limits import Limit, limit
 from . import direct
 from .curve import Curve, curve
 from .scene import Scene, scene
 from .tables import Table, load_table, omega_m_star, e_star, loss_star
 from .tables import TableFileError
+from . import tables
 from .force_law import ContactLaw, contact_law
 
 __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",
            "poisson_factor", "critical_velocity_ratios", "P_star", "A_star", "W_star",
-           "loading_energy", "omega_star_limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
+           "loading_energy", "omega_star_limit", "Limit", "limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
            "omega_m_star", "e_star", "loss_star", "TableFileError", "ContactLaw", "contact_law"]
 
 # Submodules the imports above do not load come on first attribute access (fastrest.models, ...),
@@ -54,10 +57,16 @@ __all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material",
 _LAZY = ("models", "rough", "figures", "forward", "jit", "cli")
 
 
+# Deprecated names (DeprecationWarning naming the replacement): fastrest.table_error, the module
+# that became fastrest.tables.error.
+_alias(__name__, "table_error", "fastrest.tables.error", lambda: tables.error)
+_deprecated = _module_getattr(__name__)
+
+
 def __getattr__(name):
     if name in _LAZY:
         return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module 'fastrest' has no attribute {name!r}")
+    return _deprecated(name)
 
 
 def __dir__():

@@ -52,7 +52,7 @@ class ValidityWarning(UserWarning):
     >>> import warnings, fastrest
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     e = fastrest.direct.e_star(10.0, 0.02, 0.33)  # eps_y above 0.01
+    ...     e = fastrest.direct.e_exact(10.0, 0.02, 0.33)  # eps_y above 0.01
     >>> caught[0].category.__name__
     'ValidityWarning'
     """
@@ -77,7 +77,7 @@ class ExtrapolationWarning(ValidityWarning):
     >>> import warnings, fastrest
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     e = fastrest.direct.e_star(2000.0, 0.005, 0.33, extrapolate=True)
+    ...     e = fastrest.direct.e_exact(2000.0, 0.005, 0.33, extrapolate=True)
     >>> caught[0].category.__name__
     'ExtrapolationWarning'
     """

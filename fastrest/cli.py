@@ -36,7 +36,8 @@ def _cmd_e(args):
     from . import direct
     from . import models
     from ._validation import ValidityWarning
-    from .materials import Impact, Material
+    from .impact import Impact
+    from .materials import Material
     from .unloading import MODELS, NAMES
 
     names = _model_names(args.models)
@@ -219,7 +220,7 @@ def _cmd_warmup(args):
     """Compile (or load from Numba's cache) every entry point once, timing each."""
     import fastrest
     from . import _threads, rough, tables
-    from .jit import e_curve, e_scene, e_table
+    from .jit import e_curve, e_material, e_table
     from .tables.kernel import table_array_parallel
 
     def step(name, fn):
@@ -236,8 +237,8 @@ def _cmd_warmup(args):
         c = fastrest.curve(0.005, 0.33, v_max=10.0)
         s = fastrest.scene([(0.005, 0.33), (0.003, 0.3)], v_max=10.0)
         t = fastrest.load_table()
-        step("direct solver (scalar, array)", lambda: (fastrest.direct.e_star(5.0, 0.005, 0.33),
-                                                       fastrest.direct.e_star([2.0, 5.0], 0.005, 0.33)))
+        step("direct solver (scalar, array)", lambda: (fastrest.direct.e_exact(5.0, 0.005, 0.33),
+                                                       fastrest.direct.e_exact([2.0, 5.0], 0.005, 0.33)))
         step("curve (scalar, arrays)", lambda: (c.e(5.0), c.e(np.array([5.0])), c.loss(np.array([5.0])),
                                                 c.omega_m(np.array([5.0]))))
         step("scene", lambda: (s.e(np.array([5.0]), np.array([1])), s.e(5.0, 1)))
@@ -246,7 +247,7 @@ def _cmd_warmup(args):
              lambda: (fastrest.e_star([5.0], 0.005, 0.33),
                       _threads.run_parallel(table_array_parallel, None, t.data, 1, big, big * 0.001,
                                             big * 0.066, np.empty(big.size))))
-        step("jit functions (curve, scene, table)", lambda: _warm_jit(c, s, t, e_curve, e_scene, e_table))
+        step("jit functions (curve, scene, table)", lambda: _warm_jit(c, s, t, e_curve, e_material, e_table))
         step("rough surfaces (explicit, statistical)",
              lambda: (rough.RoughSurface(steel, 1e-4, heights=[0.0, 1e-7]).impact(1e-3, 1e-3),
                       rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
@@ -260,13 +261,13 @@ def _cmd_warmup(args):
     return 0
 
 
-def _warm_jit(c, s, t, e_curve, e_scene, e_table):
+def _warm_jit(c, s, t, e_curve, e_material, e_table):
     """The fastrest.jit functions compile inside the caller's function; warm their callees."""
     import numba as nb
 
     @nb.njit  # not fastrest._jit.jit: a throwaway closure, nothing to cache
     def run(cd, sd, td):
-        return e_curve(cd, 5.0) + e_scene(sd, 1, 5.0) + e_table(td, 5.0, 0.005, 0.33, 0)
+        return e_curve(cd, 5.0) + e_material(sd, 5.0, 1) + e_table(td, 5.0, 0.005, 0.33, 0)
 
     return run(c.data, s.data, t.data)
 
@@ -313,6 +314,19 @@ _GRID_HELP = {
 }
 
 
+def _models_text():
+    """'the three unloading models JCG, Etsion and Brake', from the registry (fastrest.unloading):
+    the help texts cannot go stale when a model is added."""
+    from .unloading import MODELS
+
+    short = [m.short for m in MODELS.values()]
+    if len(short) == 1:
+        return f"the unloading model {short[0]}"
+    words = {2: "both", 3: "the three", 4: "the four"}
+    return (f"{words.get(len(short), f'the {len(short)}')} unloading models "
+            f"{', '.join(short[:-1])} and {short[-1]}")
+
+
 _NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
 
@@ -326,7 +340,7 @@ def main(argv=None):
 
     pe = sub.add_parser("e", help="e and w_m* of one sphere at given impact speeds (SI units, exact solver)",
                         description="Critical values (JGM eqs 4-7, 23-28) and, per impact speed, V1* = V/V_c, "
-                                    "w_m* and e for both unloading models (exact solver); --json adds "
+                                    f"w_m* and e for {_models_text()} (exact solver); --json adds "
                                     "the rebound speeds V2 = e V (m/s).")
     pe.add_argument("--E", type=float, required=True, help="sphere Young's modulus (Pa)")
     pe.add_argument("--nu", type=float, required=True, help="sphere Poisson's ratio (-)")
@@ -347,8 +361,8 @@ def main(argv=None):
     pe.set_defaults(func=_cmd_e)
 
     pb = sub.add_parser("build", help="build a multi-material table (HDF5)",
-                        description="Tabulate w_m*, e and 1 - e^2 (both unloading models) over eps_y, nu "
-                                    "and V1*. Defaults are the shipped table's grid.")
+                        description=f"Tabulate w_m*, e and 1 - e^2 over eps_y, nu and V1* for {_models_text()}. "
+                                    "Defaults are the shipped table's grid.")
     pb.add_argument("--out", help="output file (default: the user cache, $FASTREST_CACHE_DIR)")
     pb.add_argument("--default", action="store_true",
                     help="rebuild the shipped fastrest/tables/default.h5 of this source checkout")

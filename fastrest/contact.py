@@ -122,10 +122,17 @@ def check_omega(w, eps_y, nu, name="w"):
     lim = np.array([omega_star_limit_kernel(e, n) for e, n in zip(eps_y, nu)]) if w.size else w
     past = w >= lim
     if np.any(past):
-        from .limits import raise_interference_out_of_range  # limits builds on this module
-
         i = int(np.flatnonzero(past)[0])
-        raise_interference_out_of_range(w[i], eps_y[i], nu[i], True, name)
+        e, n = float(eps_y[i]), float(nu[i])
+        raise ValueError(f"{name} = {float(w[i])!r} {past_law_end(e, n, float(omega_star_limit_kernel(e, n)))}")
+
+
+def past_law_end(eps_y, nu, w_ar):
+    """The phrase for a point past this law's end, a/R = 1 at w* = ``w_ar`` (its
+    :func:`omega_star_limit_kernel`): "is past the end of the Jackson-Green law ...". Written once
+    here, where the law ends; :mod:`fastrest.limits` words the model's other limits around it."""
+    return (f"is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {eps_y!r}, nu = {nu!r}: "
+            f"a/R reaches 1 at w* = {w_ar:.6g}")
 
 
 def evaluate_law(kernel, w, eps_y, nu):
@@ -228,7 +235,10 @@ def A_star(w, eps_y, nu):
 def omega_star_limit(eps_y, nu):
     """Normalised interference w* at which the contact radius reaches the sphere's (a/R = 1) (-).
 
-    The Jackson-Green law ends there: its hardness (JGM eq 12) is stated for 0 < a/R < 1.
+    The Jackson-Green law ends there: its hardness (JGM eq 12) is stated for 0 < a/R < 1. This is
+    the contact law's own end (the domain of :func:`P_star`, :func:`A_star`), one of the three
+    limits of the impact model: for the largest w_m* and V1* an impact may reach, use
+    :func:`fastrest.limit`.
 
     Parameters
     ----------
@@ -254,7 +264,7 @@ def omega_star_limit(eps_y, nu):
     Notes
     -----
     Solves a/R = (pi C eps_y / 2) sqrt(A*(w)) = 1 in closed form, with A* of eq (8) (or A* = w on
-    the Hertz branch) and C of eq (5). :func:`fastrest.limits.omega_limit` combines it with
+    the Hertz branch) and C of eq (5). :func:`fastrest.limit` combines it with
     w* = 425 and the unloading model's end.
 
     Examples

@@ -18,29 +18,33 @@ namedtuple of scalars and arrays: pass it to the jit functions of :mod:`fastrest
 Numba code. Several materials in one batch call: :mod:`fastrest.scene`.
 """
 import functools
-import importlib
 
 import numba as nb
 import numpy as np
 
+from . import cells as _cells, curve_data as _curve_data, energy as _energy  # noqa: F401 (aliases below)
+from ._deprecation import alias, module_getattr
 from ._jit import compiled_entry, jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool, check_eps_y, check_nu,
                           check_velocity, kernel_array, real_scalar, warn, warn_if_outside_validated)
 from .curve_data import build_curve_data, curve_array, curve_value
 from .fastpath import fast_scalar
-from .limits import v1_star_limit
+from .limits import speed_limit
 
 __all__ = ["Curve", "curve"]
 
-# Names that lived here before fastrest.curve_data, fastrest.cells, fastrest.fastpath and
-# fastrest.scene: still importable from here (not part of this module's API).
-from .cells import HERTZ_BASE, HERTZ_BITS_PER_OCTAVE, HERTZ_EDGES, HERTZ_SHIFT, N_HERTZ, closed_form  # noqa: E402,F401
-from .cells import hertz_rows, jg_nodes  # noqa: E402,F401
-from .curve_data import BITS_PER_OCTAVE, CurveData, e_curve, loss_curve, omega_m_curve  # noqa: E402,F401
-from .energy import V_SWITCH  # noqa: E402,F401
-_fast_scalar = fast_scalar
-_curve_array = curve_array
-_MOVED_TO_SCENE = ("Scene", "scene", "SceneData", "scene_value", "material_index")
+# Names that lived here before fastrest.curve_data, fastrest.cells and fastrest.scene: still
+# importable from here for one release, with a DeprecationWarning naming their home. The scene's
+# names are registered by fastrest.scene (it sits above this module).
+__getattr__ = module_getattr(__name__)
+for _name, _home in [(n, "cells") for n in ("HERTZ_BASE", "HERTZ_BITS_PER_OCTAVE", "HERTZ_EDGES", "HERTZ_SHIFT",
+                                            "N_HERTZ", "closed_form", "hertz_rows", "jg_nodes")] + \
+                    [(n, "curve_data") for n in ("BITS_PER_OCTAVE",)] + \
+                    [(n, "jit") for n in ("CurveData", "e_curve", "loss_curve", "omega_m_curve")] + \
+                    [("V_SWITCH", "energy")]:
+    _module = {"cells": _cells, "curve_data": _curve_data, "jit": _curve_data, "energy": _energy}[_home]
+    alias(__name__, _name, f"fastrest.{_home}.{_name}", functools.partial(getattr, _module, _name))
+del _name, _home, _module
 
 
 # --- the scalar fast path ---------------------------------------------------------------------
@@ -184,7 +188,7 @@ class Curve:
     def __init__(self, eps_y, nu, unloading, data):
         self.eps_y, self.nu, self.unloading, self.data = eps_y, nu, unloading, data
         self.v_max = data.v_max
-        self.v_limit = v1_star_limit(eps_y, nu)
+        self.v_limit = speed_limit(eps_y, nu)
         self._packed = [_pack(data, what, rows)
                         for what, rows in enumerate((data.omega_rows, data.e_rows, data.loss_rows))]
         self._entry = _scalar_entry()
@@ -310,15 +314,8 @@ def curve(eps_y, nu, unloading="jcg", *, v_max=None, extrapolate=False):
         v_max = float(check_velocity(real_scalar(v_max, "v_max"), "v_max"))
     warn_if_outside_validated(eps_y, nu)
     data = build_curve_data(eps_y, nu, unloading, v_max=v_max, extrapolate=extrapolate)
-    c = (_ExtrapolatedCurve if v1_star_limit(eps_y, nu) < data.v_max else Curve)(eps_y, nu, unloading, data)
+    c = (_ExtrapolatedCurve if speed_limit(eps_y, nu) < data.v_max else Curve)(eps_y, nu, unloading, data)
     if c.v_limit < data.v_max:
         warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (V1* = {c.v_limit:.6g}) to "
              f"V1* = {data.v_max:.6g}: extrapolated there; evaluations past it warn too", ExtrapolationWarning)
     return c
-
-
-def __getattr__(name):
-    # the scene's names lived here before fastrest.scene (imported on demand: scene imports curve)
-    if name in _MOVED_TO_SCENE:
-        return getattr(importlib.import_module(".scene", __package__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

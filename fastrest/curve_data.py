@@ -18,7 +18,7 @@ from . import unloading as _unloading
 from .cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows, jg_nodes
 from .energy import V_SWITCH, f_star_kernel, omega_m_sorted_kernel
 from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, fit_cells, float_bits, share_edges
-from .limits import raise_out_of_range, v1_star_limit, w_upper_model
+from .limits import raise_out_of_range, speed_limit, w_upper_model
 
 __all__ = ["BITS_PER_OCTAVE", "CurveData", "curve_value", "omega_m_curve", "e_curve", "loss_curve", "curve_array",
            "build_curve_data"]
@@ -253,7 +253,7 @@ def build_curve_data(eps_y, nu, unloading="jcg", *, v_max=None, extrapolate=Fals
     unit = _unloading.get(unloading)
     model = unit.code
     w_hi = w_upper_model(eps_y, nu, extrapolate, model)
-    limit = v1_star_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
+    limit = speed_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
     if v_max is not None and v_max > limit:
         raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading)
     if unit.cells_end < w_hi:  # extrapolating towards an unloading model's end: stop short of it

@@ -3,7 +3,9 @@
 Each call integrates the JG law (JGM eqs 9, 25) by quadrature and inverts the energy balance (29)
 by Newton's method (:mod:`fastrest.energy`), then applies the unloading model (eqs 33/35, 38;
 :mod:`fastrest.unloading`). Relative error ~1e-15 against mpmath; tens of microseconds per point.
-It is the reference the fast paths (tables, curves) are measured against.
+It is the reference the fast paths (tables, curves) are measured against; its functions are
+named ``<quantity>_exact`` (:func:`e_exact`), the interpolated ones of the default table
+``<quantity>_star`` (:func:`fastrest.e_star`).
 
 Domain (every function): V1* >= 0 (V1* <= 1 is elastic: w_m* = V1*^0.8, e = 1); eps_y > 0;
 0 <= nu < 0.5. Outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45 a
@@ -16,15 +18,16 @@ import math
 
 import numpy as np
 
+from ._deprecation import alias, module_getattr
 from ._jit import jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_bool, check_eps_y, check_nu,
                           check_velocity, warn, warn_if_outside_validated)
 from ._validation import broadcast_inputs, shaped
 from .energy import V_SWITCH, omega_m_kernel
-from .limits import raise_out_of_range, v1_star_limit, w_upper_model
+from .limits import raise_out_of_range, speed_limit, w_upper_model
 from .unloading import get as unloading_model, restitution_kernel
 
-__all__ = ["omega_m_star", "e_star", "loss_star", "residual_star", "solve", "v1_star_limit"]
+__all__ = ["omega_m_exact", "e_exact", "loss_exact", "residual_exact", "solve"]
 
 
 @jit
@@ -72,14 +75,14 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     return out, shape
 
 
-def omega_m_star(v1_star, eps_y, nu, *, extrapolate=False):
+def omega_m_exact(v1_star, eps_y, nu, *, extrapolate=False):
     """Normalised maximum interference w_m* = omega_m/omega_c of an impact at V1* (-).
 
     Parameters
     ----------
     v1_star : float or array_like
         Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
     eps_y : float or array_like
         Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
     nu : float or array_like
@@ -121,9 +124,9 @@ def omega_m_star(v1_star, eps_y, nu, *, extrapolate=False):
     JGM check value (docs/model.md section 3):
 
     >>> from fastrest import direct
-    >>> round(direct.omega_m_star(10.0, 0.005, 0.33), 9)
+    >>> round(direct.omega_m_exact(10.0, 0.005, 0.33), 9)
     6.549856323
-    >>> direct.omega_m_star(2000.0, 0.005, 0.33)  # doctest: +ELLIPSIS
+    >>> direct.omega_m_exact(2000.0, 0.005, 0.33)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
         ...
     ValueError: v1_star = 2000.0 gives w_m* > 425, the model's limit (JGM section 3.3); ...
@@ -133,14 +136,14 @@ def omega_m_star(v1_star, eps_y, nu, *, extrapolate=False):
     return shaped(out[0], shape)
 
 
-def e_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def e_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Coefficient of restitution e = V2/V1 (-) of an impact at V1*, by the exact solver.
 
     Parameters
     ----------
     v1_star : float or array_like
         Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
     eps_y : float or array_like
         Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
     nu : float or array_like
@@ -181,7 +184,7 @@ def e_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     Notes
     -----
     JGM eq (16) with the rebound energy of eq (38) after elastic unloading (eq 32) from the maximum
-    interference of eq (29) (:func:`omega_m_star`): e^2 = P_m* (w_m* - w_res*)/V1*^2, w_res* from
+    interference of eq (29) (:func:`omega_m_exact`): e^2 = P_m* (w_m* - w_res*)/V1*^2, w_res* from
     the unloading model (eq 35, eq 33 or Brake's; docs/model.md section 3).
 
     Examples
@@ -189,28 +192,28 @@ def e_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     JGM check values (docs/model.md section 3):
 
     >>> from fastrest import direct
-    >>> round(direct.e_star(10.0, 0.005, 0.33), 9)
+    >>> round(direct.e_exact(10.0, 0.005, 0.33), 9)
     0.828732573
-    >>> round(direct.e_star(10.0, 0.005, 0.33, "etsion"), 9)
+    >>> round(direct.e_exact(10.0, 0.005, 0.33, "etsion"), 9)
     0.865201797
-    >>> direct.e_star([0.5, 2.2], 0.005, 0.33).round(6)
+    >>> direct.e_exact([0.5, 2.2], 0.005, 0.33).round(6)
     array([1.      , 0.967494])
     """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     return shaped(out[1], shape)
 
 
-def loss_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def loss_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Fraction of the impact energy dissipated, 1 - e^2 (-), computed without cancellation.
 
-    Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9), where 1 - e_star(...)**2
+    Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9), where 1 - e_exact(...)**2
     would lose most digits (multi-asperity codes sum many barely plastic contacts).
 
     Parameters
     ----------
     v1_star : float or array_like
         Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
     eps_y : float or array_like
         Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
     nu : float or array_like
@@ -248,29 +251,29 @@ def loss_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
 
     Notes
     -----
-    JGM eqs (16), (38) as :func:`e_star`, with the JCG ratio of eq (35) evaluated through
+    JGM eqs (16), (38) as :func:`e_exact`, with the JCG ratio of eq (35) evaluated through
     expm1/log1p from w_m* - 1 (docs/model.md section 3, "JCG unloading below the switch").
 
     Examples
     --------
     >>> from fastrest import direct
-    >>> round(direct.loss_star(10.0, 0.005, 0.33), 9)
+    >>> round(direct.loss_exact(10.0, 0.005, 0.33), 9)
     0.313202323
-    >>> f"{direct.loss_star(1 + 1e-9, 0.005, 0.33):.6e}"
+    >>> f"{direct.loss_exact(1 + 1e-9, 0.005, 0.33):.6e}"
     '6.386087e-11'
     """
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     return shaped(out[2], shape)
 
 
-def residual_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def residual_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     """Residual state after the impact: residual interference and radius of curvature (-).
 
     Parameters
     ----------
     v1_star : float or array_like
         Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
     eps_y : float or array_like
         Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
     nu : float or array_like
@@ -317,7 +320,7 @@ def residual_star(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     Examples
     --------
     >>> from fastrest import direct
-    >>> w_res, r = direct.residual_star(10.0, 0.005, 0.33)
+    >>> w_res, r = direct.residual_exact(10.0, 0.005, 0.33)
     >>> round(w_res, 6), round(r, 6)
     (1.823254, 1.999458)
     """
@@ -332,7 +335,7 @@ def solve(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     ----------
     v1_star : float or array_like
         Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        :func:`v1_star_limit` (about 1022 for eps_y = 0.005, nu = 0.33).
+        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
     eps_y : float or array_like
         Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
     nu : float or array_like
@@ -349,8 +352,8 @@ def solve(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     -------
     dict
         ``"omega_m_star"`` (w_m*), ``"e"``, ``"loss"`` (1 - e^2), ``"omega_res_star"`` (w_res*),
-        ``"R_res_ratio"`` (R_res/R), all dimensionless, each as :func:`omega_m_star`,
-        :func:`e_star`, :func:`loss_star` and :func:`residual_star` return them.
+        ``"R_res_ratio"`` (R_res/R), all dimensionless, each as :func:`omega_m_exact`,
+        :func:`e_exact`, :func:`loss_exact` and :func:`residual_exact` return them.
 
     Raises
     ------
@@ -385,3 +388,12 @@ def solve(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
     keys = ("omega_m_star", "e", "loss", "omega_res_star", "R_res_ratio")
     return {k: shaped(out[i], shape) for i, k in enumerate(keys)}
+
+
+# the exact solver's functions were named like the table's (fastrest.e_star is the default table)
+__getattr__ = module_getattr(__name__)
+alias(__name__, "omega_m_star", "fastrest.direct.omega_m_exact", lambda: omega_m_exact)
+alias(__name__, "e_star", "fastrest.direct.e_exact", lambda: e_exact)
+alias(__name__, "loss_star", "fastrest.direct.loss_exact", lambda: loss_exact)
+alias(__name__, "residual_star", "fastrest.direct.residual_exact", lambda: residual_exact)
+alias(__name__, "v1_star_limit", "fastrest.limit(eps_y, nu, ...).v1_star", lambda: speed_limit)

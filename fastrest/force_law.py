@@ -27,9 +27,11 @@ The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted t
 :class:`fastrest.forward.ForwardData`.
 
 From Numba: ``law.data`` and :func:`contact_force` (re-exported by :mod:`fastrest.jit`), one
-state row of :data:`STATE_SIZE` float64 per contact, zeros for a virgin contact.
+state row of :data:`STATE_SIZE` float64 per contact, zeros for a virgin contact. Several materials
+in one loop: :func:`stack_laws` and :func:`contact_force_stacked`, indexed by material.
 """
 import math
+from collections import namedtuple
 
 import numpy as np
 
@@ -40,11 +42,13 @@ from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import P_table_forward, forward_data
 from .interpolation import cell_index, cell_polynomial
-from .limits import omega_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
+from .limits import interference_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
+from .scene import material_index
 from . import unloading as _unloading
 from .unloading import elastic
 
-__all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time"]
+__all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time", "StackedLaws",
+           "stack_laws", "contact_force_stacked"]
 
 #: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res*, and
 #: delta = w_max - w_res* (0 until the contact first unloads from w_max).
@@ -99,6 +103,13 @@ def contact_force(law, state, w):
     # field made the caller's loop ~15x slower (Numba materialises the tuple; bench/FORCE_LAW.md)
     model, eps_y, nu, w_end = law.model, law.eps_y, law.nu, law.w_max
     rows, shift, base = law.p_rows, law.shift, law.base
+    return _force_step(model, eps_y, nu, w_end, rows, shift, base, state, w)
+
+
+@jit(inline=True)
+def _force_step(model, eps_y, nu, w_end, rows, shift, base, state, w):
+    """The body of :func:`contact_force` and :func:`contact_force_stacked`: one material's fields
+    (``rows`` may hold other materials' rows too: ``base`` places this material's)."""
     w = np.float64(w)  # integer and float32 interferences (the cell index reads float64 bits)
     w_max = state[0]
     if w > w_max:  # virgin loading, on the JG law (P_table_forward's rule)
@@ -124,6 +135,162 @@ def contact_force(law, state, w):
         return 0.0
     state[0] = state[1] = state[2] = state[3] = np.nan  # left the model's domain: history lost
     return np.nan
+
+
+StackedLaws = namedtuple("StackedLaws", ["model", "eps_y", "nu", "w_max", "shift", "base", "p_rows",
+                                         "omega_c", "P_c"])
+StackedLaws.__doc__ = """The contact laws of several materials in one Numba-friendly data: arrays indexed by material.
+
+Build it with :func:`stack_laws` (not by hand) and pass it, with a material index per contact, to
+:func:`contact_force_stacked` inside a ``numba.prange`` loop: a tuple or list of ``ContactLaw.data``
+cannot be indexed by a run-time material index in Numba code (the laws' rows differ in length),
+this can.
+
+Parameters
+----------
+model : int64 ndarray
+    Unloading model code of each material's law (:data:`fastrest.jit.JCG` ...).
+eps_y, nu : float64 ndarray
+    The materials (-).
+w_max : float64 ndarray
+    Largest interference w* each law serves (-).
+shift, base : int64 ndarray
+    Cell-index parameters of each material's bit-indexed cells in ``p_rows``.
+p_rows : ndarray
+    (n, 8) float64: every material's rows of P* (:class:`fastrest.forward.ForwardData`), one after
+    the other.
+omega_c, P_c : float64 ndarray
+    Each law's units (m, N; 1.0 for a normalised law): :func:`contact_force_stacked` returns P* in
+    units of P_c at w = omega/omega_c, as :func:`contact_force` does; a DEM code whose contacts of
+    one material differ in radius computes omega_c and P_c per contact
+    (:func:`fastrest.jit.critical_scales`).
+
+Examples
+--------
+>>> import fastrest
+>>> from fastrest.force_law import stack_laws
+>>> laws = stack_laws([fastrest.contact_law(0.005, 0.33), fastrest.contact_law(0.002, 0.3, "etsion")])
+>>> laws.eps_y, laws.model
+(array([0.005, 0.002]), array([0, 1]))
+"""
+
+
+@jit(inline=True)
+def contact_force_stacked(laws, material, state, w):
+    """:func:`contact_force` of material ``material`` of stacked laws: several materials in one loop.
+
+    Parameters
+    ----------
+    laws : StackedLaws
+        The materials' laws, from :func:`stack_laws`.
+    material : int
+        Index of the contact's material in ``laws`` (its position in the list given to
+        :func:`stack_laws`); an integer or an integer-valued float.
+    state : float64 array of :data:`STATE_SIZE`
+        This contact's history; zeros for a virgin contact. Updated in place.
+    w : float
+        Current interference w = omega/omega_c (-) of the contact.
+
+    Returns
+    -------
+    float
+        P* (-), bit for bit what :func:`contact_force` gives with that material's ``law.data``.
+        NaN (and the state set to NaN, as for any input outside the law) for a material index out
+        of range, a fraction or a non-finite one, and wherever :func:`contact_force` gives NaN. A
+        jit kernel: it never raises.
+
+    Notes
+    -----
+    The same code as :func:`contact_force` (JGM eqs 9, 14 loading; eq 32 with eq 35, 33-34 or
+    Brake's unloading), reading the material's fields from the stacked arrays. For a DEM loop over
+    contacts of several materials inside ``numba.prange`` (docs/model.md section 10; the example
+    docs/examples/dem_wall.py). Inlined into the calling jitted loop; also exported as
+    :func:`fastrest.jit.contact_force_stacked`.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest.force_law import contact_force_stacked, stack_laws
+    >>> steel, alu = fastrest.contact_law(0.005, 0.33), fastrest.contact_law(0.004, 0.33)
+    >>> laws = stack_laws([steel, alu])
+    >>> state = steel.new_state()
+    >>> round(contact_force_stacked(laws, 1, state, 10.0), 6) == round(float(alu.force([10.0])[0]), 6)
+    True
+    >>> contact_force_stacked(laws, 2, steel.new_state(), 10.0)  # no material 2
+    nan
+    """
+    models, eps_a, nu_a, w_end_a = laws.model, laws.eps_y, laws.nu, laws.w_max
+    rows, shift_a, base_a = laws.p_rows, laws.shift, laws.base
+    k = material_index(material)
+    if k < 0 or k >= eps_a.size:
+        state[0] = state[1] = state[2] = state[3] = np.nan
+        return np.nan
+    return _force_step(models[k], eps_a[k], nu_a[k], w_end_a[k], rows, shift_a[k], base_a[k], state, w)
+
+
+def stack_laws(laws):
+    """One :class:`StackedLaws` holding several materials' contact laws, for
+    :func:`contact_force_stacked` in a parallel DEM loop.
+
+    Parameters
+    ----------
+    laws : sequence of ContactLaw
+        1 to 65536 laws (:func:`contact_law` or :meth:`fastrest.Impact.contact_law`), possibly of
+        different unloading models and ``w_max``; material k of the result is ``laws[k]``.
+
+    Returns
+    -------
+    StackedLaws
+        Arrays indexed by material; the rows of every law, concatenated (the laws' own arrays are
+        copied, so the result does not change if they are rebuilt).
+
+    Raises
+    ------
+    TypeError
+        ``laws`` is not a sequence of :class:`ContactLaw`.
+    ValueError
+        No law, or more than 65536.
+
+    Notes
+    -----
+    The force of material k is computed by the code of :func:`contact_force` on ``laws[k].data``
+    (docs/model.md section 10): the results are the same bit for bit.
+
+    Examples
+    --------
+    >>> import numba, numpy as np, fastrest
+    >>> from fastrest import jit as frj
+    >>> from fastrest.force_law import stack_laws
+    >>> laws = stack_laws([fastrest.contact_law(0.005, 0.33), fastrest.contact_law(0.002, 0.25)])
+    >>> @numba.njit(parallel=True)
+    ... def forces(laws, material, states, w, out):
+    ...     for i in numba.prange(w.size):  # one contact per i, of material material[i]
+    ...         out[i] = frj.contact_force_stacked(laws, material[i], states[i], w[i])
+    >>> out = np.empty(2)
+    >>> forces(laws, np.array([0, 1]), np.zeros((2, frj.STATE_SIZE)), np.array([10.0, 10.0]), out)
+    >>> out.round(6)
+    array([25.647583, 26.233655])
+    """
+    if isinstance(laws, ContactLaw) or not hasattr(laws, "__len__") or isinstance(laws, (str, bytes)):
+        raise TypeError(f"laws must be a sequence of ContactLaw (fastrest.contact_law), got {type(laws).__name__}")
+    laws = list(laws)
+    for k, law in enumerate(laws):
+        if not isinstance(law, ContactLaw):
+            raise TypeError(f"laws[{k}] must be a ContactLaw (fastrest.contact_law), got {type(law).__name__}")
+    if not 1 <= len(laws) <= 65536:
+        raise ValueError(f"laws must hold 1 to 65536 contact laws; got {len(laws)}")
+    sizes = [law.data.p_rows.shape[0] for law in laws]
+    offset = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
+    return StackedLaws(
+        model=np.array([law.data.model for law in laws], dtype=np.int64),
+        eps_y=np.array([law.data.eps_y for law in laws], dtype=np.float64),
+        nu=np.array([law.data.nu for law in laws], dtype=np.float64),
+        w_max=np.array([law.data.w_max for law in laws], dtype=np.float64),
+        shift=np.array([law.data.shift for law in laws], dtype=np.int64),
+        base=np.array([law.data.base for law in laws], dtype=np.int64) - offset,
+        p_rows=np.ascontiguousarray(np.concatenate([law.data.p_rows for law in laws]), dtype=np.float64),
+        omega_c=np.array([law.omega_c for law in laws], dtype=np.float64),
+        P_c=np.array([law.P_c for law in laws], dtype=np.float64))
 
 
 @jit
@@ -413,7 +580,7 @@ class ContactLaw:
         _force_path(self.data, state, w, out)
         if np.isnan(out).any():
             i = int(np.flatnonzero(np.isnan(out))[0])
-            if w[i] > self.w_max and self.w_max < omega_limit(self.eps_y, self.nu, extrapolate=self.extrapolate,
+            if w[i] > self.w_max and self.w_max < interference_limit(self.eps_y, self.nu, extrapolate=self.extrapolate,
                                                               unloading=self.unloading):
                 raise ValueError(f"interference = {float(w[i] * self.omega_c)!r} is beyond this law's w_max = "
                                  f"{self.w_max!r} (in units of omega_c = {self.omega_c!r}): build it with a "
@@ -424,7 +591,7 @@ class ContactLaw:
 
     def _raise_too_fast(self, v):
         """The ValueError for a V1* whose maximum interference w_m* (JGM eq 29) passes the law's end."""
-        full = omega_limit(self.eps_y, self.nu, extrapolate=self.extrapolate, unloading=self.unloading)
+        full = interference_limit(self.eps_y, self.nu, extrapolate=self.extrapolate, unloading=self.unloading)
         if self.w_max < full:
             v_top = math.sqrt(f_star_kernel(self.w_max, self.eps_y, self.nu))
             raise ValueError(f"v1_star = {v!r} gives w_m* beyond this law's w_max = {self.w_max!r}: it takes "
@@ -441,7 +608,7 @@ class ContactLaw:
         ----------
         v1_star : float
             Normalised impact speed V1/V_c (-), finite and > 0, up to the speed whose w_m* is the
-            law's ``w_max`` (:func:`fastrest.direct.v1_star_limit` for a law built to the model's
+            law's ``w_max`` (:func:`fastrest.limit` for a law built to the model's
             end). Speeds below 2^-5 are integrated in scaled units (exact for the Hertz law), so
             tiny ones (1e-300) give e = 1 to the scheme's accuracy.
         steps_per_contact : int, optional
@@ -481,7 +648,7 @@ class ContactLaw:
         >>> import fastrest
         >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
         >>> r = law.impact(10.0, steps_per_contact=1000)
-        >>> round(r["e"], 6), round(fastrest.direct.e_star(10.0, 0.005, 0.33), 6)
+        >>> round(r["e"], 6), round(fastrest.direct.e_exact(10.0, 0.005, 0.33), 6)
         (0.828732, 0.828733)
         """
         v = real_scalar(v1_star, "v1_star")
@@ -574,5 +741,5 @@ def contact_law(eps_y, nu, unloading="jcg", *, w_max=None, extrapolate=False, om
             raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
         if w_max > lim:
             raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max", model.name)
-    data = forward_data(eps_y, nu, w_max, model.name, extrapolate=bool(extrapolate))
+    data = forward_data(eps_y, nu, model.name, w_max=w_max, extrapolate=bool(extrapolate))
     return ContactLaw(eps_y, nu, model.name, bool(extrapolate), data, omega_c, P_c)

@@ -48,17 +48,18 @@ from collections import namedtuple
 
 import numpy as np
 
+from ._deprecation import alias, keyword_only, module_getattr
 from ._jit import jit
 from ._validation import (check_bool, check_count, check_eps_y, check_nu, real_scalar,
                           warn_if_outside_validated)
 from .contact import W_SWITCH, area_exponent, c_of_nu, p_star_jg
 from .energy import F_SWITCH, jg_integral
-from .limits import omega_limit, raise_interference_out_of_range, w_upper_model
+from .limits import interference_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial, share_edges)
 from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
 
-__all__ = ["ForwardData", "forward_data", "forward_limit", "F_forward", "P_forward",
+__all__ = ["ForwardData", "forward_data", "F_forward", "P_forward",
            "P_table_forward", "FP_table_forward", "returned_forward", "loss_forward",
            "forward_values", "forward_values_excess", "JCG", "ETSION", "BRAKE"]
 
@@ -98,7 +99,7 @@ p_rows : ndarray
 Examples
 --------
 >>> from fastrest import forward
->>> d = forward.forward_data(0.005, 0.33, 50.0)
+>>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
 >>> d.model, d.w_max, d.f_rows.shape
 (0, 50.0, (151, 8))
 """
@@ -140,7 +141,7 @@ def F_forward(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> round(forward.F_forward(d, 6.549856322605), 9)  # the V1* = 10 check value, squared
     100.0
     >>> forward.F_forward(d, 60.0)  # past w_max
@@ -179,7 +180,7 @@ def P_forward(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> round(forward.P_forward(d, 10.0), 6)
     25.647583
     """
@@ -218,7 +219,7 @@ def P_table_forward(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> abs(forward.P_table_forward(d, 10.0) / forward.P_forward(d, 10.0) - 1) < 1e-13
     True
     """
@@ -260,7 +261,7 @@ def FP_table_forward(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> f, p = forward.FP_table_forward(d, 10.0)
     >>> round(f, 6), round(p, 6)
     (272.276805, 25.647583)
@@ -312,11 +313,11 @@ def forward_values(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> F, P, R, L = forward.forward_values(d, 6.549856322605)  # w_m* of V1* = 10
     >>> round(F, 6), round(P, 6), round(R, 6), round(L, 6)
     (100.0, 14.530473, 68.679768, 31.320232)
-    >>> round((R / F) ** 0.5, 6)  # e, as fastrest.direct.e_star(10.0, 0.005, 0.33)
+    >>> round((R / F) ** 0.5, 6)  # e, as fastrest.direct.e_exact(10.0, 0.005, 0.33)
     0.828733
     """
     return forward_values_excess(data, w, w - 1.0)
@@ -348,7 +349,7 @@ def forward_values_excess(data, w, w1):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.3, 10.0)
+    >>> d = forward.forward_data(0.005, 0.3, w_max=10.0)
     >>> F, P, R, L = forward.forward_values_excess(d, 1.0 + 1e-12, 1e-12)
     >>> bool(abs(L / 1e-12 - 1.02 * 0.54 / 6.9) < 1e-9)
     True
@@ -395,7 +396,7 @@ def returned_forward(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> round(forward.returned_forward(d, 6.549856322605), 6)
     68.679768
     """
@@ -428,7 +429,7 @@ def loss_forward(data, w):
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0)
+    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
     >>> round(forward.loss_forward(d, 6.549856322605), 6)
     31.320232
     >>> forward.loss_forward(d, 0.5)
@@ -467,50 +468,12 @@ def _f_march(nodes, eps_y, nu, out):
         w_prev = nodes[i]
 
 
-def forward_limit(eps_y, nu, *, extrapolate=False):
-    """Largest interference w* a :class:`ForwardData` of this material may serve (-).
-
-    Parameters
-    ----------
-    eps_y : float
-        Sy/E' (-), > 0.
-    nu : float
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5.
-    extrapolate : bool, optional
-        False (default): w* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
-
-    Returns
-    -------
-    float
-        The limit w* (-): 425, or the w* where a/R = 1 if smaller or when extrapolating. (The
-        unloading model's end is not applied here; :func:`forward_data` applies it.)
-
-    Raises
-    ------
-    TypeError
-        ``eps_y`` or ``nu`` not a single real number; ``extrapolate`` not True or False.
-    ValueError
-        eps_y not finite and > 0; nu outside [0, 0.5).
-
-    Notes
-    -----
-    :func:`fastrest.limits.omega_limit` with the loading law alone (docs/model.md section 4).
-
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> forward.forward_limit(0.005, 0.33)
-    425.0
-    >>> round(forward.forward_limit(0.005, 0.33, extrapolate=True), 4)
-    1994.4444
-    """
-    eps_y = float(check_eps_y(real_scalar(eps_y, "eps_y")))
-    nu = float(check_nu(real_scalar(nu, "nu")))
-    return omega_limit(eps_y, nu, extrapolate=check_bool(extrapolate, "extrapolate"))
+def _is_number(x):
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
 
 
-def forward_data(eps_y, nu, w_max, unloading="jcg", *, extrapolate=False,
-                 bits_per_octave=BITS_PER_OCTAVE):
+@keyword_only("w_max", old=lambda args: _is_number(args[2]))
+def forward_data(eps_y, nu, unloading="jcg", *, w_max, extrapolate=False, bits_per_octave=BITS_PER_OCTAVE):
     """Tabulate the forward map of one material up to interference ``w_max``.
 
     Parameters
@@ -519,11 +482,13 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", *, extrapolate=False,
         Sy/E' (-), > 0 (validated range 0.0005-0.01; outside: ValidityWarning).
     nu : float
         Poisson's ratio of the yielding material, 0 <= nu < 0.5.
-    w_max : float
-        Largest normalised interference omega/omega_c to serve (-), >= 0. Only the cells up to it
-        are computed (cost grows with log(w_max/1.9): 250 cells and a few ms for w_max = 425).
     unloading : {"jcg", "etsion", "brake"}
         Residual-interference model, JGM eq (35), (33) or Brake's (:mod:`fastrest.unloading`).
+    w_max : float
+        Largest normalised interference omega/omega_c to serve (-), >= 0, keyword-only (the largest
+        allowed: ``fastrest.limit(eps_y, nu, unloading).omega_m_star``). Only the cells up to it
+        are computed (cost grows with log(w_max/1.9): 250 cells and a few ms for w_max = 425).
+        Passing it positionally (third, before ``unloading``) is deprecated.
     extrapolate : bool
         Allow w_max above 425 (JGM's range), up to the point where a/R = 1 (and the unloading
         model's end).
@@ -560,10 +525,10 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", *, extrapolate=False,
     Examples
     --------
     >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, 50.0, "etsion")
+    >>> d = forward.forward_data(0.005, 0.33, "etsion", w_max=50.0)
     >>> d.model == forward.ETSION, d.w_max
     (True, 50.0)
-    >>> forward.forward_data(0.005, 0.33, 500.0)  # doctest: +ELLIPSIS
+    >>> forward.forward_data(0.005, 0.33, w_max=500.0)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
         ...
     ValueError: w_max = 500.0 is beyond w* = 425, the largest interference the model covers ...
@@ -598,3 +563,11 @@ def forward_data(eps_y, nu, w_max, unloading="jcg", *, extrapolate=False,
     f_rows = np.ascontiguousarray(fit_cells(edges, share_edges(f_vals.reshape(nodes.shape))))
     p_rows = np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
     return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows)
+
+
+def _forward_limit(eps_y, nu, *, extrapolate=False):
+    return interference_limit(eps_y, nu, extrapolate=extrapolate)
+
+
+__getattr__ = module_getattr(__name__)
+alias(__name__, "forward_limit", "fastrest.limit(eps_y, nu, extrapolate=...).omega_m_star", lambda: _forward_limit)

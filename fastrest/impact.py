@@ -18,11 +18,13 @@ import warnings
 import numpy as np
 
 from . import direct
-from ._validation import as_float_array, check_finite_positive, check_velocity, real_scalar
+from ._deprecation import alias, warn_deprecated
+from ._validation import (EDGE_TOL, EPS_Y_VALIDATED, NU_VALIDATED, ValidityWarning, as_float_array,
+                          check_finite_positive, check_velocity, real_scalar, warn)
 from .critical import (critical_area, critical_energy, critical_force, critical_interference,
                        critical_velocity, effective_mass, effective_modulus, effective_radius)
-from .limits import raise_out_of_range, v1_star_limit
-from .materials import Material, poisson_factor
+from .limits import raise_out_of_range, speed_limit
+from .materials import UNITS_HINT, Material, implausible, poisson_factor
 
 __all__ = ["Impact"]
 
@@ -71,6 +73,14 @@ class Impact:
         R or mass not finite and > 0; no mass given and ``sphere.rho`` is None; neither body can
         yield (Sy = inf for both); inputs so extreme that a critical value is not a finite, normal
         double (the message names it).
+
+    Warns
+    -----
+    ValidityWarning
+        eps_y or nu of the impact outside the range JGM validated (0.0005-0.01, 0.2-0.45), when the
+        impact is built (each evaluation warns again); with a reminder of the units where an input
+        is outside the ranges of engineering solids (:data:`fastrest.materials.PLAUSIBLE`, e.g.
+        eps_y > 0.1: E in GPa or Sy in MPa). A speed the model refuses names such inputs too.
 
     Notes
     -----
@@ -171,6 +181,35 @@ class Impact:
         self.yielding = yielding
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
         self._check_scales(sphere, R1, other, R2, names)
+        self._warn_validity()
+
+    def _unit_hints(self):
+        """'name = value ...' of this impact's inputs outside :data:`fastrest.materials.PLAUSIBLE`."""
+        out = implausible(eps_y=self.eps_y)
+        for prefix, m in (("sphere.", self.sphere), ("flat.", self.flat)):
+            if m is not None:
+                out += implausible(m.E, m.Sy, m.rho, prefix=prefix)
+        return out
+
+    def _warn_validity(self):
+        """One ValidityWarning at construction: eps_y or nu outside the paper's validated range
+        (which every evaluation also warns of), and inputs outside the ranges of engineering solids
+        with a reminder of the units."""
+        lo, hi = EPS_Y_VALIDATED
+        lo_n, hi_n = NU_VALIDATED
+        parts = []
+        if not lo * (1.0 - EDGE_TOL) <= self.eps_y <= hi * (1.0 + EDGE_TOL):
+            parts.append(f"eps_y = Sy/E' = {self.eps_y:.4g} outside [{lo}, {hi}]")
+        if not lo_n * (1.0 - EDGE_TOL) <= self.nu <= hi_n * (1.0 + EDGE_TOL):
+            parts.append(f"nu = {self.nu!r} outside [{lo_n}, {hi_n}]")
+        if not parts:
+            return
+        msg = ("Impact: " + " and ".join(parts) + ", the range validated by Jackson, Green & Marghitu (2010); "
+               "the model is computed as defined but is not validated there")
+        hints = self._unit_hints()
+        if hints:
+            msg += f"; implausible for solids: {'; '.join(hints)}; {UNITS_HINT}"
+        warn(msg, ValidityWarning)
 
     def _check_scales(self, sphere, R1, other, R2, names):
         """Every scale the model divides by must be a finite, normal float: inputs far outside any
@@ -297,8 +336,9 @@ class Impact:
 
         Notes
         -----
-        :func:`fastrest.limits.v1_star_limit` (the energy balance, eq 29, at the interference
-        limit) times V_c (docs/model.md section 4).
+        ``fastrest.limit(eps_y, nu, unloading, extrapolate=...).v1_star`` (the energy balance,
+        eq 29, at the interference limit) times V_c (docs/model.md section 4): the model's one limit
+        (:func:`fastrest.limit`) in m/s for this impact.
 
         Examples
         --------
@@ -308,7 +348,7 @@ class Impact:
         >>> round(imp.V_max(), 4), round(imp.V_max(extrapolate=True), 4)  # m/s
         (52.7211, 199.2743)
         """
-        return v1_star_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * self.V_c
+        return speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * self.V_c
 
     def v1_star(self, V1, unloading=None, *, extrapolate=False):
         """Normalised impact speed V1* = V1 / V_c (-), JGM eq (28).
@@ -350,10 +390,16 @@ class Impact:
         V = check_velocity(V1, "V1", "(m/s)")
         v = V / self.V_c
         # a few ulp of slack: V_max() itself (lim * V_c / V_c) must pass; the solver decides there
-        over = v > v1_star_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * (1.0 + 1e-12)
+        over = v > speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * (1.0 + 1e-12)
         if np.any(over):
-            raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", unloading,
-                               V_c=self.V_c)
+            try:
+                raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", unloading,
+                                   V_c=self.V_c)
+            except ValueError as exc:
+                hints = self._unit_hints()
+                more = (f" (implausible for solids: {'; '.join(hints)}; {UNITS_HINT})"
+                        if hints else " (V1 in m/s)")
+                raise ValueError(f"{exc}{more}") from None
         return float(v) if v.ndim == 0 else v
 
     def max_interference(self, V1, *, extrapolate=False):
@@ -385,7 +431,7 @@ class Impact:
 
         Notes
         -----
-        :func:`fastrest.direct.omega_m_star` (eq 29) times omega_c (eq 4), at V1* of eq (30).
+        :func:`fastrest.direct.omega_m_exact` (eq 29) times omega_c (eq 4), at V1* of eq (30).
 
         Examples
         --------
@@ -395,7 +441,7 @@ class Impact:
         >>> round(imp.max_interference(1.0) * 1e6, 4)  # um
         19.2188
         """
-        return direct.omega_m_star(self.v1_star(V1, extrapolate=extrapolate), self.eps_y, self.nu,
+        return direct.omega_m_exact(self.v1_star(V1, extrapolate=extrapolate), self.eps_y, self.nu,
                                    extrapolate=extrapolate) * self.omega_c
 
     def omega_m(self, V1, extrapolate=False):
@@ -435,8 +481,7 @@ class Impact:
         ...     imp.omega_m(1.0) == imp.max_interference(1.0)
         True
         """
-        warnings.warn("Impact.omega_m is deprecated: use Impact.max_interference (m)", DeprecationWarning,
-                      stacklevel=2)
+        warn_deprecated("Impact.omega_m", "Impact.max_interference (m)")
         return self.max_interference(V1, extrapolate=extrapolate)
 
     def e(self, V1, unloading="jcg", *, extrapolate=False):
@@ -470,7 +515,7 @@ class Impact:
 
         Notes
         -----
-        :func:`fastrest.direct.e_star` at V1* = V1/V_c (eq 30): e^2 = P_m* (w_m* - w_res*)/V1*^2
+        :func:`fastrest.direct.e_exact` at V1* = V1/V_c (eq 30): e^2 = P_m* (w_m* - w_res*)/V1*^2
         from eqs (29), (32), (38) and the unloading model (eq 35, eqs 33-34 or Brake's).
 
         Examples
@@ -480,7 +525,7 @@ class Impact:
         >>> round(fastrest.Impact(steel, 0.01).e(1.0), 4)
         0.7132
         """
-        return direct.e_star(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
+        return direct.e_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
                              unloading=unloading, extrapolate=extrapolate)
 
     def rebound_velocity(self, V1, unloading="jcg", *, extrapolate=False):
@@ -600,7 +645,7 @@ class Impact:
 
         Notes
         -----
-        :func:`fastrest.direct.residual_star` times omega_c (eq 4) and R_eff.
+        :func:`fastrest.direct.residual_exact` times omega_c (eq 4) and R_eff.
 
         Examples
         --------
@@ -611,7 +656,7 @@ class Impact:
         >>> round(omega_res * 1e6, 4), round(R_res * 1e3, 4)  # um, mm
         (7.6978, 29.1037)
         """
-        w_res, r_ratio = direct.residual_star(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y,
+        w_res, r_ratio = direct.residual_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y,
                                               self.nu, unloading=unloading, extrapolate=extrapolate)
         return w_res * self.omega_c, r_ratio * self.R_eff
 
@@ -651,3 +696,7 @@ def _sphere_mass(material, R, mass, name, R_name="R"):
         raise ValueError(f"the sphere's mass (4/3) pi R^3 rho = {m!r} kg ({R_name} = {float(R)!r} m, rho = "
                          f"{material.rho!r} kg/m^3) is not a finite, normal double; give mass= (kg)")
     return m
+
+
+# fastrest.materials.Impact (the class's first home), deprecated: registered here, where it is defined
+alias("fastrest.materials", "Impact", "fastrest.Impact", lambda: Impact)

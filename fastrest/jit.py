@@ -14,7 +14,10 @@ Build the data once in Python, pass it into your jitted function, and call these
             total += energy[i] * frj.loss_curve(data, v1_star[i])
         return total
 
-All functions take V1* = V1/V_c (dimensionless); every scalar argument may be a float64, float32
+Arguments come in one order: the data, then the speed, then what picks the material (its eps_y
+and nu, or its index in a scene), then the unloading model: ``e_table(tab, v1_star, eps_y, nu,
+unloading)``, ``e_material(scene, v1_star, material)``, ``e_curve(data, v1_star)``, as in the
+Python API (``Scene.e(v1_star, material)``). All functions take V1* = V1/V_c (dimensionless); every scalar argument may be a float64, float32
 or an integer (converted to float64; model codes and material indices may be integer-valued
 floats). They return NaN for input outside the data's domain (negative or NaN speed, V1* > v_max,
 material outside a table, a table's point past w_m* = 425 or a/R = 1, a result that would not be
@@ -31,24 +34,30 @@ file): clear your ``__pycache__/*.nbi``/``*.nbc`` (or set ``NUMBA_CACHE_DIR``) a
 Time-stepping codes: :func:`contact_force` (``law.data`` of :func:`fastrest.contact_law`, a state
 row of :data:`STATE_SIZE` per contact) gives the normal force with history, and
 :func:`critical_scales` the critical values of a contact from the two bodies' properties (the
-same code as :class:`fastrest.Impact`). See docs/examples/dem_wall.py.
+same code as :class:`fastrest.Impact`). Several materials in one loop (``numba.prange`` over
+contacts of different materials): :func:`contact_force_stacked` with the :class:`StackedLaws` of
+:func:`fastrest.force_law.stack_laws` and each contact's material index. See
+docs/examples/dem_wall.py.
 """
 import numpy as np
+from numba.extending import overload
 
+from ._deprecation import warn_deprecated
 from ._jit import jit
 from .critical import CriticalScales, critical_scales
 from .curve_data import CurveData, e_curve, loss_curve, omega_m_curve
 from .scene import SceneData, material_index, scene_value
-from .force_law import STATE_SIZE, contact_force, hertz_contact_time
+from .force_law import STATE_SIZE, StackedLaws, contact_force, contact_force_stacked, hertz_contact_time
 from .tables import TableData, table_value
 from .unloading import BRAKE, ETSION, JCG
 
 # inline="always": inlined into the caller's loop; the table kernel reads the table's arrays through
 # data pointers, so nothing is reference-counted per call (`python -m bench.stencil`).
 
-__all__ = ["CurveData", "SceneData", "TableData", "omega_m_scene", "e_scene", "loss_scene", "JCG", "ETSION",
+__all__ = ["CurveData", "SceneData", "TableData", "omega_m_material", "e_material", "loss_material", "JCG", "ETSION",
            "BRAKE", "omega_m_curve", "e_curve", "loss_curve", "omega_m_table", "e_table", "loss_table",
-           "STATE_SIZE", "contact_force", "hertz_contact_time", "CriticalScales", "critical_scales"]
+           "STATE_SIZE", "contact_force", "hertz_contact_time", "CriticalScales", "critical_scales",
+           "StackedLaws", "contact_force_stacked"]
 
 
 @jit(inline=True)
@@ -74,7 +83,7 @@ def omega_m_table(tab, v1_star, eps_y, nu):
 
     Notes
     -----
-    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_star`) stored
+    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_exact`) stored
     in the table (docs/model.md section 7). Inlined into the calling jitted loop.
 
     Examples
@@ -116,7 +125,7 @@ def e_table(tab, v1_star, eps_y, nu, unloading):
 
     Notes
     -----
-    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_star`) stored in the
+    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_exact`) stored in the
     table. Inlined into the calling jitted loop.
 
     Examples
@@ -161,7 +170,7 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
 
     Notes
     -----
-    Interpolates :func:`fastrest.direct.loss_star` (JGM eqs 16, 38, computed without
+    Interpolates :func:`fastrest.direct.loss_exact` (JGM eqs 16, 38, computed without
     cancellation) stored in the table. Inlined into the calling jitted loop.
 
     Examples
@@ -179,17 +188,17 @@ def loss_table(tab, v1_star, eps_y, nu, unloading):
 
 
 @jit(inline=True)
-def omega_m_scene(scene, material, v1_star):
+def omega_m_material(scene, v1_star, material):
     """Normalised maximum interference w_m* of one material of a scene at V1* (-).
 
     Parameters
     ----------
     scene : SceneData
         A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
-    material : int
-        Material index into the scene, 0 <= material < number of materials.
     v1_star : float
         Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+    material : int
+        Material index into the scene, 0 <= material < number of materials.
 
     Returns
     -------
@@ -199,7 +208,7 @@ def omega_m_scene(scene, material, v1_star):
 
     Notes
     -----
-    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_star`) on the
+    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_exact`) on the
     material's curve cells (docs/model.md section 7). Inlined into the calling jitted loop.
 
     Examples
@@ -207,24 +216,24 @@ def omega_m_scene(scene, material, v1_star):
     >>> import fastrest
     >>> from fastrest import jit as frj
     >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
-    >>> round(frj.omega_m_scene(sc, 0, 10.0), 6), round(frj.omega_m_scene(sc, 1, 300.0), 6)
+    >>> round(frj.omega_m_material(sc, 10.0, 0), 6), round(frj.omega_m_material(sc, 300.0, 1), 6)
     (6.549856, 126.263984)
     """
     return scene_value(scene, 0, material, v1_star)
 
 
 @jit(inline=True)
-def e_scene(scene, material, v1_star):
+def e_material(scene, v1_star, material):
     """Coefficient of restitution e of one material of a scene at V1* (-).
 
     Parameters
     ----------
     scene : SceneData
         A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
-    material : int
-        Material index into the scene, 0 <= material < number of materials.
     v1_star : float
         Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+    material : int
+        Material index into the scene, 0 <= material < number of materials.
 
     Returns
     -------
@@ -234,7 +243,7 @@ def e_scene(scene, material, v1_star):
 
     Notes
     -----
-    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_star`) on the
+    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_exact`) on the
     material's curve cells. Inlined into the calling jitted loop.
 
     Examples
@@ -244,26 +253,26 @@ def e_scene(scene, material, v1_star):
     >>> import fastrest
     >>> from fastrest import jit as frj
     >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
-    >>> round(frj.e_scene(sc, 0, 10.0), 9), round(frj.e_scene(sc, 1, 300.0), 9)
+    >>> round(frj.e_material(sc, 10.0, 0), 9), round(frj.e_material(sc, 300.0, 1), 9)
     (0.828732573, 0.405336002)
-    >>> frj.e_scene(sc, 2, 10.0)  # no material 2
+    >>> frj.e_material(sc, 10.0, 2)  # no material 2
     nan
     """
     return scene_value(scene, 1, material, v1_star)
 
 
 @jit(inline=True)
-def loss_scene(scene, material, v1_star):
+def loss_material(scene, v1_star, material):
     """Dissipated fraction 1 - e^2 of one material of a scene at V1* (-).
 
     Parameters
     ----------
     scene : SceneData
         A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
-    material : int
-        Material index into the scene, 0 <= material < number of materials.
     v1_star : float
         Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+    material : int
+        Material index into the scene, 0 <= material < number of materials.
 
     Returns
     -------
@@ -273,7 +282,7 @@ def loss_scene(scene, material, v1_star):
 
     Notes
     -----
-    Interpolates :func:`fastrest.direct.loss_star` (JGM eqs 16, 38, without cancellation) on the
+    Interpolates :func:`fastrest.direct.loss_exact` (JGM eqs 16, 38, without cancellation) on the
     material's curve cells. Inlined into the calling jitted loop.
 
     Examples
@@ -281,7 +290,40 @@ def loss_scene(scene, material, v1_star):
     >>> import fastrest
     >>> from fastrest import jit as frj
     >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
-    >>> round(frj.loss_scene(sc, 0, 10.0), 6)
+    >>> round(frj.loss_material(sc, 10.0, 0), 6)
     0.313202
     """
     return scene_value(scene, 2, material, v1_star)
+
+
+# --- deprecated: the scene functions took (scene, material, v1_star) ------------------------------
+# Every other function takes the data, then the speed, then the material (e_table(tab, v1_star,
+# eps_y, nu, ...), Scene.e(v1_star, material)); the old names keep their old order for one release
+# and warn when they are compiled (inside your jitted function: once per signature) or called from
+# Python. Argument types cannot tell the two orders apart (both may be integers or floats), hence new
+# names rather than a reordered old one.
+
+def _deprecated_scene_function(what, old, new, kernel):
+    def deprecated(scene, material, v1_star):
+        warn_deprecated(f"fastrest.jit.{old}(scene, material, v1_star)",
+                        f"fastrest.jit.{new}(scene, v1_star, material)")
+        return kernel(scene, v1_star, material)
+
+    @overload(deprecated, inline="always")
+    def _compiled(scene, material, v1_star):
+        warn_deprecated(f"fastrest.jit.{old}(scene, material, v1_star)",
+                        f"fastrest.jit.{new}(scene, v1_star, material)", stacklevel=2)
+
+        def impl(scene, material, v1_star):
+            return scene_value(scene, what, material, v1_star)
+
+        return impl
+
+    deprecated.__name__ = deprecated.__qualname__ = old
+    deprecated.__doc__ = (f"Deprecated: :func:`{new}` with the arguments (scene, v1_star, material).")
+    return deprecated
+
+
+omega_m_scene = _deprecated_scene_function(0, "omega_m_scene", "omega_m_material", omega_m_material)
+e_scene = _deprecated_scene_function(1, "e_scene", "e_material", e_material)
+loss_scene = _deprecated_scene_function(2, "loss_scene", "loss_material", loss_material)

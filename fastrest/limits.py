@@ -13,16 +13,18 @@ Speed limits follow through the energy balance, V1*^2 = F(w_m*) (eq 29). Kernels
 limit; the Python layer raises through the functions below.
 """
 import math
+from typing import NamedTuple
 
 import numpy as np
 
+from ._deprecation import alias, module_getattr
 from ._jit import jit
 from ._validation import OMEGA_M_STAR_MAX, check_bool, check_eps_y, check_nu, real_scalar
-from .contact import omega_star_limit_kernel
+from .contact import omega_star_limit_kernel, past_law_end
 from .energy import f_star_kernel
 from . import unloading as _unloading
 
-__all__ = ["OMEGA_M_STAR_MAX", "omega_limit", "v1_star_limit"]
+__all__ = ["OMEGA_M_STAR_MAX", "Limit", "limit"]
 
 EXTRAPOLATE_HINT = "Pass extrapolate=True to compute beyond it (up to a/R = 1) with the same formulas"
 
@@ -49,8 +51,36 @@ def _code(unloading):
     return -1 if unloading is None else _unloading.get(unloading).code
 
 
-def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
-    """Largest maximum interference w_m* = omega_m/omega_c the model accepts for one material (-).
+class Limit(NamedTuple):
+    """The largest impact a material allows, as an interference and as a speed (:func:`limit`).
+
+    Parameters
+    ----------
+    omega_m_star : float
+        Largest maximum interference w_m* = omega_m/omega_c (-).
+    v1_star : float
+        Largest impact speed V1* = V1/V_c (-) (``inf`` if the law never ends).
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> w, v = fastrest.limit(0.005, 0.33)  # a named tuple
+    >>> w, round(v, 2)
+    (425.0, 1022.39)
+    """
+
+    #: Largest maximum interference w_m* = omega_m/omega_c (-).
+    omega_m_star: float
+    #: Largest impact speed V1* = V1/V_c (-), with V1*^2 = F(w_m*) (JGM eq 29); ``inf`` if none.
+    v1_star: float
+
+
+def limit(eps_y, nu, unloading=None, *, extrapolate=False):
+    """Where the model ends for one material: the largest w_m* and the largest V1* it accepts.
+
+    The one function for the model's limits. (:func:`fastrest.omega_star_limit` is the contact
+    law's own end, a/R = 1, one of the limits this combines; :meth:`fastrest.Impact.V_max` is
+    ``limit(...).v1_star`` of an impact in m/s.)
 
     Parameters
     ----------
@@ -58,17 +88,18 @@ def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
         Sy/E' (-), finite and > 0.
     nu : float
         Poisson's ratio of the yielding material (-), 0 <= nu < 0.5.
+    unloading : {"jcg", "etsion", "brake"} or None, optional
+        An unloading model: no further than it is defined (JCG's eq 35 ends at w_m* = 10017.5,
+        which matters only with ``extrapolate=True``). None (default): the loading law alone.
     extrapolate : bool, optional
         False (default): no further than w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
-    unloading : str or UnloadingModel or None, optional
-        A model name (``"jcg"``, ``"etsion"``, ``"brake"``): no further than that model is defined
-        (JCG's eq 35 ends at w_m* = 10017.5). None (default): the loading law alone.
 
     Returns
     -------
-    float
-        The smallest of 425 (unless extrapolating), the w* where a/R = 1, and the unloading
-        model's end (-).
+    Limit
+        ``(omega_m_star, v1_star)``: the smallest of 425 (unless extrapolating), the w* where
+        a/R = 1 and the unloading model's end (-); and the speed that reaches it (-), through the
+        energy balance V1*^2 = F(w_m*) (JGM eq 29).
 
     Raises
     ------
@@ -81,18 +112,27 @@ def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     -----
     The limits of docs/model.md section 4: w_m* = 425 (JGM section 3.3), a/R = 1 where the hardness
     of JGM eq (12) ends (:func:`fastrest.omega_star_limit`), and ``OMEGA_END`` of the unloading
-    model (:mod:`fastrest.unloading`). :func:`v1_star_limit` gives the same limit as a speed.
+    model (:mod:`fastrest.unloading`); the speed from the loading energy F of JGM eqs (19), (25)
+    (:func:`fastrest.loading_energy`).
 
     Examples
     --------
-    >>> from fastrest.limits import omega_limit
-    >>> omega_limit(0.005, 0.33)
-    425.0
-    >>> round(omega_limit(0.005, 0.33, extrapolate=True), 4)  # a/R = 1
+    >>> import fastrest
+    >>> lim = fastrest.limit(0.005, 0.33)
+    >>> lim.omega_m_star, round(lim.v1_star, 2)
+    (425.0, 1022.39)
+    >>> round(fastrest.limit(0.005, 0.33, extrapolate=True).omega_m_star, 4)  # a/R = 1
     1994.4444
-    >>> round(omega_limit(0.0005, 0.33, extrapolate=True, unloading="jcg"), 4)  # end of eq (35)
+    >>> round(fastrest.limit(0.0005, 0.33, "jcg", extrapolate=True).omega_m_star, 4)  # end of eq (35)
     10017.5236
     """
+    w = interference_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)  # validates
+    return Limit(w, _speed_at(w, eps_y, nu))
+
+
+def interference_limit(eps_y, nu, *, extrapolate=False, unloading=None):
+    """``limit(...).omega_m_star`` without the speed (for fastrest's own callers): validates, and
+    returns the largest w_m* (a float)."""
     e, n = real_scalar(eps_y, "eps_y"), real_scalar(nu, "nu")
     check_eps_y(e)
     check_nu(n)
@@ -100,53 +140,23 @@ def omega_limit(eps_y, nu, *, extrapolate=False, unloading=None):
     return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
 
 
-def v1_star_limit(eps_y, nu, *, extrapolate=False, unloading=None):
-    """Largest V1* the model accepts for one material (-), through V1*^2 = F(w_m*) (JGM eq 29) at
-    :func:`omega_limit`.
+def speed_limit(eps_y, nu, *, extrapolate=False, unloading=None):
+    """``limit(...).v1_star`` (for fastrest's own callers): validates, and returns the largest V1*."""
+    w = interference_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)  # validates
+    return _speed_at(w, eps_y, nu)
 
-    Parameters
-    ----------
-    eps_y, nu : float
-        The material's eps_y = Sy/E' (-), finite and > 0, and Poisson's ratio (-), 0 <= nu < 0.5.
-    extrapolate : bool, optional
-        False: w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
-    unloading : str or None, optional
-        A model name: no further than that model is defined (JCG's eq 35 ends at w_m* = 10017.5).
-        None: the loading law alone.
 
-    Returns
-    -------
-    float
-        V1*_max (-); ``math.inf`` if the law never ends.
-
-    Raises
-    ------
-    TypeError
-        ``eps_y`` or ``nu`` is not a real number, or ``extrapolate`` is not True or False.
-    ValueError
-        ``eps_y`` or ``nu`` out of range, or an unknown ``unloading``.
-
-    Notes
-    -----
-    The energy balance JGM eq (29), V1*^2 = F(w_m*) (:func:`fastrest.loading_energy`), at the
-    interference limit :func:`omega_limit` (docs/model.md section 4). Also exported as
-    :func:`fastrest.direct.v1_star_limit`; :meth:`fastrest.Impact.V_max` is the same in m/s.
-
-    Examples
-    --------
-    >>> from fastrest.limits import v1_star_limit
-    >>> round(v1_star_limit(0.005, 0.33), 2)
-    1022.39
-    >>> round(v1_star_limit(0.005, 0.33, extrapolate=True), 2)
-    3851.32
-    """
-    w = omega_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)  # validates
+def _speed_at(w, eps_y, nu):
     return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
 
 
+__getattr__ = module_getattr(__name__)
+alias(__name__, "omega_limit", "fastrest.limit(eps_y, nu, ...).omega_m_star", lambda: interference_limit)
+alias(__name__, "v1_star_limit", "fastrest.limit(eps_y, nu, ...).v1_star", lambda: speed_limit)
+
+
 def _past_law(lead, e, n, w_ar, at):
-    return ValueError(f"{lead} is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {e!r}, "
-                      f"nu = {n!r}: a/R reaches 1 at w* = {w_ar:.6g}{at}")
+    return ValueError(f"{lead} {past_law_end(e, n, w_ar)}{at}")
 
 
 def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None, V_c=None,
@@ -167,17 +177,17 @@ def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None
     if unloading is not None:
         model = _unloading.get(unloading)
         if model.omega_end < w_ar and (extrapolate or model.omega_end < OMEGA_M_STAR_MAX):
-            lim = v1_star_limit(e, n, extrapolate=extrapolate, unloading=model)
+            lim = speed_limit(e, n, extrapolate=extrapolate, unloading=model)
             if (v if V_c is None else v / V_c) > lim:
                 raise ValueError(
                     f"{lead} is past the end of {model.short} unloading ({model.equation}) for "
                     f"eps_y = {e!r}, nu = {n!r}: its w_res reaches w_m at w_m* = {model.omega_end:.6g}, "
                     f"i.e. {at(lim)}, and e is undefined beyond (other unloading models go on to a/R = 1)")
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
-        raise _past_law(lead, e, n, w_ar, f", i.e. {at(v1_star_limit(e, n, extrapolate=True))}")
+        raise _past_law(lead, e, n, w_ar, f", i.e. {at(speed_limit(e, n, extrapolate=True))}")
     raise ValueError(
         f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
-        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(v1_star_limit(e, n))}. {hint}")
+        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(speed_limit(e, n))}. {hint}")
 
 
 def interference_limit_message(w, eps_y, nu, extrapolate, unloading=None):
@@ -191,8 +201,7 @@ def interference_limit_message(w, eps_y, nu, extrapolate, unloading=None):
             return (f"is past the end of {model.short} unloading ({model.equation}): its w_res "
                     f"reaches w_m at w* = {model.omega_end:.6g}")
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX or w >= w_ar:
-        return (f"is past the end of the Jackson-Green law (a/R = 1, eq 12) for eps_y = {e!r}, nu = {n!r}: "
-                f"a/R reaches 1 at w* = {w_ar:.6g}")
+        return past_law_end(e, n, w_ar)
     return (f"is beyond w* = {OMEGA_M_STAR_MAX:g}, the largest interference the model covers (JGM "
             f"section 3.3); pass extrapolate=True to go up to a/R = 1 (w* = {w_ar:.6g}) with the same formulas")
 

@@ -14,13 +14,61 @@ implements the equations as printed, not the table values (see docs/model.md).
 """
 from dataclasses import dataclass
 import math
+import os
+import sys
+import warnings
 
 import numpy as np
 
-from ._validation import check_finite_positive, check_nu, kernel_array, real_scalar
+from ._deprecation import module_getattr
+from ._validation import ValidityWarning, check_finite_positive, check_nu, kernel_array, real_scalar
 from .critical import c_of_nu
 
-__all__ = ["Material", "poisson_factor", "critical_velocity_ratios"]
+__all__ = ["Material", "poisson_factor", "critical_velocity_ratios", "PLAUSIBLE", "UNITS_HINT"]
+
+#: Ranges of engineering solids, in SI units. A value outside its range is almost always a unit
+#: mistake (E or Sy in GPa or MPa, rho in g/cm^3): :class:`Material` and :class:`fastrest.Impact`
+#: then warn (:class:`fastrest.ValidityWarning`) with :data:`UNITS_HINT`, and an impact speed the
+#: model refuses names the implausible value. The model still evaluates such input as given.
+#:
+#: * ``E``: 1e6 Pa (soft elastomers) to 1e13 Pa (diamond is 1.2e12);
+#: * ``Sy``: 1e5 Pa to 1e11 Pa (soft metals yield at a few MPa; ``math.inf`` is never checked);
+#: * ``rho``: 30 to 3e4 kg/m^3 (osmium is 2.26e4; a density in g/cm^3 is at most 22.6);
+#: * ``Sy/E`` of a material and ``eps_y`` = Sy/E' of an impact: 1e-5 to 0.1 (annealed pure metals
+#:   are ~1e-4, polymers ~0.03).
+PLAUSIBLE = {"E": (1e6, 1e13), "Sy": (1e5, 1e11), "rho": (30.0, 3e4), "eps_y": (1e-5, 0.1)}
+#: The reminder of fastrest's units appended to every plausibility warning and message.
+UNITS_HINT = ("check the units: E and Sy in Pa (steel: E = 2e11, Sy = 1e9), rho in kg/m^3 (steel: 7850), "
+              "R in m, mass in kg, V in m/s")
+
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def _warn_caller(message):
+    """A ValidityWarning from ``Material.__post_init__`` attributed to the first line outside
+    fastrest that built the material (past the dataclass's generated ``__init__``)."""
+    f = sys._getframe(2)  # the frame that called __post_init__: the generated __init__
+    level = 3
+    if f is not None and f.f_code.co_name == "__init__" and not f.f_code.co_filename.startswith(_PACKAGE_DIR):
+        f, level = f.f_back, level + 1
+    while f is not None and f.f_code.co_filename.startswith(_PACKAGE_DIR):
+        f, level = f.f_back, level + 1
+    warnings.warn(message, ValidityWarning, stacklevel=level)
+
+
+def implausible(E=None, Sy=None, rho=None, eps_y=None, prefix=""):
+    """'name = value' texts of the values outside :data:`PLAUSIBLE` (empty if none); ``prefix``
+    names the owner (``"sphere."``). Used by :class:`Material` and :class:`fastrest.Impact`."""
+    out = []
+    for name, unit, x in (("E", " Pa", E), ("Sy", " Pa", Sy), ("rho", " kg/m^3", rho), ("eps_y", "", eps_y)):
+        if x is None or math.isinf(x):
+            continue
+        lo, hi = PLAUSIBLE[name]
+        if not lo <= x <= hi:
+            label = "eps_y = Sy/E'" if name == "eps_y" else prefix + name
+            out.append(f"{label} = {x!r}{unit} is {'below' if x < lo else 'above'} {lo if x < lo else hi:g}{unit}")
+    return out
 
 
 def poisson_factor(nu):
@@ -144,6 +192,13 @@ class Material:
     ValueError
         E not finite and > 0; nu outside [0, 0.5); Sy not > 0 or NaN; rho not finite and > 0.
 
+    Warns
+    -----
+    ValidityWarning
+        E, Sy, rho or Sy/E outside the ranges of engineering solids (:data:`PLAUSIBLE`: E 1e6 to
+        1e13 Pa, Sy 1e5 to 1e11 Pa, rho 30 to 3e4 kg/m^3, Sy/E 1e-5 to 0.1), almost always a unit
+        mistake (E in GPa, Sy in MPa, rho in g/cm^3): the message says which value and the units.
+
     Notes
     -----
     Elastic-perfectly plastic (no hardening, no rate effects: docs/model.md section 8), as JGM
@@ -162,6 +217,15 @@ class Material:
     Traceback (most recent call last):
         ...
     ValueError: nu (Poisson's ratio) must be in [0, 0.5); got 0.5
+
+    A modulus in GPa instead of Pa warns:
+
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     m = fastrest.Material(200, 0.33, 1.12e9)
+    >>> print(caught[0].message)  # doctest: +ELLIPSIS
+    Material: E = 200.0 Pa is below 1e+06 Pa, implausible for a solid; check the units: E and Sy in Pa ...
     """
 
     E: float
@@ -179,6 +243,13 @@ class Material:
             raise ValueError(f"Sy must be > 0 (Pa) (math.inf for a body that never yields); got {self.Sy!r}")
         if self.rho is not None:
             check_finite_positive(self.rho, "rho", "(kg/m^3)")
+        bad = implausible(self.E, self.Sy, self.rho)
+        ratio = self.Sy / self.E
+        lo, hi = PLAUSIBLE["eps_y"]
+        if not bad and math.isfinite(ratio) and not lo <= ratio <= hi:
+            bad = [f"Sy/E = {ratio:.3g} is {'below' if ratio < lo else 'above'} {lo if ratio < lo else hi:g}"]
+        if bad:
+            _warn_caller(f"Material: {'; '.join(bad)}, implausible for a solid; {UNITS_HINT}")
 
     @property
     def yield_product(self):
@@ -195,11 +266,7 @@ class Material:
         return poisson_factor(self.nu) * self.Sy
 
 
-def __getattr__(name):
-    # Impact lived here before it moved to fastrest.impact (it sits above the solver); old imports
-    # and pickles that name fastrest.materials.Impact keep working
-    if name == "Impact":
-        from .impact import Impact
-
-        return Impact
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# Impact lived here before it moved to fastrest.impact (it sits above the solver): old imports and
+# pickles that name fastrest.materials.Impact keep working, with a DeprecationWarning. The alias is
+# registered by fastrest.impact (imported with the package), so this module never imports upward.
+__getattr__ = module_getattr(__name__)

@@ -5,7 +5,7 @@
 (they are the same for every material, :mod:`fastrest.cells`), then each material's JG rows. A
 point with material index k is evaluated by :func:`scene_value`, the curves' own rule
 (:func:`fastrest.curve_data.curve_value`) on material k's rows, so a scene gives bit for bit what
-material k's curve gives. In Numba code: :func:`fastrest.jit.e_scene`.
+material k's curve gives. In Numba code: :func:`fastrest.jit.e_material`.
 """
 import math
 from collections import namedtuple
@@ -15,6 +15,7 @@ import numba as nb
 import numpy as np
 from numba.extending import overload
 
+from ._deprecation import alias
 from ._jit import jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, broadcast_named, check_velocity,
                           kernel_array, warn)
@@ -44,7 +45,7 @@ omega_rows, e_rows, loss_rows : ndarray
 Notes
 -----
 Evaluated by :func:`scene_value` (JGM eqs 29, 38); in your own Numba code
-:func:`fastrest.jit.e_scene`.
+:func:`fastrest.jit.e_material`.
 
 Examples
 --------
@@ -269,7 +270,7 @@ class Scene:
     curves : list of Curve
         The materials' curves.
     data : SceneData
-        For :func:`fastrest.jit.e_scene` in Numba code.
+        For :func:`fastrest.jit.e_material` in Numba code.
 
     Raises
     ------
@@ -428,3 +429,12 @@ def _sequence(x, name, what):
     if isinstance(x, (str, bytes, bytearray, dict)) or not isinstance(x, Iterable) or isinstance(x, np.ma.MaskedArray):
         raise TypeError(f"{name} must be {what}, got {_short(x)} ({type(x).__name__})")
     return list(x)
+
+
+# fastrest.curve held the scene's names before this module (deprecated there; registered here,
+# where they are defined, so that fastrest.curve never imports this module)
+for _name, _new in [("Scene", "fastrest.Scene"), ("scene", "fastrest.scene"), ("SceneData", "fastrest.jit.SceneData"),
+                    ("scene_value", "`from fastrest.scene import scene_value`"),
+                    ("material_index", "`from fastrest.scene import material_index`")]:
+    alias("fastrest.curve", _name, _new, (lambda n: lambda: globals()[n])(_name))
+del _name, _new

@@ -1,7 +1,17 @@
-"""Former home of :mod:`fastrest.tables.error` (kept so that ``fastrest.table_error`` imports keep
-working): the same objects."""
-from .tables.error import (DEFAULT_TOL, SAFETY, SIGN_CHANGE_FLOOR, AccuracyWarning, adversarial_points,
-                           build_to_tolerance, measure, meets, sample_points, warn_if_inaccurate, worst)
+"""Deprecated: the former home of :mod:`fastrest.tables.error`; use that module.
 
-__all__ = ["AccuracyWarning", "DEFAULT_TOL", "SAFETY", "SIGN_CHANGE_FLOOR", "adversarial_points", "sample_points",
-           "measure", "meets", "worst", "build_to_tolerance", "warn_if_inaccurate"]
+Importing this module, or any name from it, warns (DeprecationWarning); the names are the objects
+of :mod:`fastrest.tables.error`. Nothing in fastrest imports it.
+"""
+from ._deprecation import alias, module_getattr, warn_deprecated
+from .tables import error as _error
+
+__all__ = []
+
+warn_deprecated("the module fastrest.table_error", "fastrest.tables.error")
+
+__getattr__ = module_getattr(__name__)
+for _name in ("AccuracyWarning", "DEFAULT_TOL", "SAFETY", "SIGN_CHANGE_FLOOR", "adversarial_points", "sample_points",
+              "measure", "meets", "worst", "build_to_tolerance", "warn_if_inaccurate"):
+    alias(__name__, _name, f"fastrest.tables.error.{_name}", (lambda n: lambda: getattr(_error, n))(_name))
+del _name

@@ -105,8 +105,7 @@ def _targets():
     add("Impact.rebound_velocity", dict(V1=1.0), lambda **k: imp.rebound_velocity(**k))
     add("Impact.max_interference", dict(V1=1.0, extrapolate=False), lambda **k: imp.max_interference(**k))
     add("Impact.v1_star", dict(V1=1.0, extrapolate=False), lambda **k: imp.v1_star(**k))
-    add("direct.v1_star_limit", dict(eps_y=0.005, nu=0.33, extrapolate=False),
-        lambda **k: direct.v1_star_limit(**k))
+    add("limit", dict(eps_y=0.005, nu=0.33, extrapolate=False), lambda **k: fastrest.limit(**k))
     add("poisson_factor", dict(nu=0.3), lambda **k: fastrest.poisson_factor(**k))
     add("critical_velocity_ratios", dict(nu=0.3), lambda **k: fastrest.critical_velocity_ratios(**k))
     add("P_star", dict(w=2.0, eps_y=0.005, nu=0.3), lambda **k: fastrest.P_star(**k))
@@ -135,7 +134,6 @@ def _targets():
     add("ContactLaw.new_state", dict(n=3), lambda **k: law.new_state(**k))
     add("forward.forward_data", dict(eps_y=0.005, nu=0.33, w_max=5.0, extrapolate=False),
         lambda **k: forward.forward_data(**k))
-    add("forward.forward_limit", dict(eps_y=0.005, nu=0.33, extrapolate=False), lambda **k: forward.forward_limit(**k))
     add("tables.normalise_grid", dict(n_eps_y=72, n_nu=6, eps_y_max=0.01, c_eps_y_map_rate=30.0, n_eps_y_energy=32),
         lambda **k: tables.normalise_grid(k))
     for name in models.MODELS:
@@ -156,7 +154,7 @@ def _targets():
     add("rough.RoughSurface(gw)", dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6),
         lambda **k: rough.RoughSurface(steel, 1e-4, gw=k).impact(1e-3, 1e-3))
     add("RoughSurface.impact", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: surf.impact(**k))
-    add("rough.sweep", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: rough.sweep([surf], **k))
+    add("rough.sweep", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: rough.sweep([surf], on_error="raise", **k))  # errors, not per-surface records
     return T
 
 

@@ -111,7 +111,7 @@ def test_e_bad_input_names_parameter(capsys, bad, name):
 
 def test_e_past_425_is_an_error_unless_extrapolating(capsys):
     imp = readme_impact()
-    v_lim = fastrest.direct.v1_star_limit(imp.eps_y, imp.nu) * imp.V_c
+    v_lim = fastrest.limit(imp.eps_y, imp.nu).v1_star * imp.V_c
     args = README_ARGS[:README_ARGS.index("--V")] + ["--V", repr(v_lim * 1.2)]
     code, out, err = run(args, capsys)
     assert code != 0 and "425" in err
@@ -205,7 +205,7 @@ def test_build_small_grid(capsys, tmp_path):
     assert t.grid["n_eps_y"] == 6 and t.grid["n_nu"] == 6
     assert t.grid["eps_y_blocks"] == [[16.0, 6]] and t.grid["n_eps_y_energy"] == 4
     assert t.grid["eps_y_min"] == tables.DEFAULT_GRID["eps_y_min"]
-    ref = fastrest.direct.e_star(5.0, 0.005, 0.33)
+    ref = fastrest.direct.e_exact(5.0, 0.005, 0.33)
     assert t.e_star(5.0, 0.005, 0.33) == pytest.approx(ref, rel=1e-3)
     assert list(out_path.parent.glob("*.tmp")) == []
     code, out, err = run(["info", str(out_path)], capsys)
@@ -262,3 +262,20 @@ def test_module_entry_point_subprocess(tmp_path):
     r = subprocess.run([sys.executable, "-m", "fastrest", "info", str(bad)], cwd=tmp_path,
                        env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == 1 and str(bad) in r.stderr
+
+
+@pytest.mark.parametrize("argv", [["e"], ["build"], ["export", "c"]])
+def test_help_names_every_registered_unloading_model(argv, capsys):
+    """The help texts are generated from the unloading registry: every model is named, and no text
+    speaks of "both" models (there are three)."""
+    from fastrest.unloading import MODELS
+
+    with pytest.raises(SystemExit) as exc:
+        cli.main(argv + ["-h"])
+    assert exc.value.code == 0
+    text = " ".join(capsys.readouterr().out.split())  # argparse wraps lines
+    assert "both" not in text
+    for m in MODELS.values():
+        assert m.short in text or m.short.upper() in text, m.short
+    if argv != ["export", "c"]:
+        assert f"the {['', 'one', 'two', 'three', 'four'][len(MODELS)]} unloading models" in text

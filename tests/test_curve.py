@@ -99,7 +99,7 @@ def check(errs, label):
 @pytest.mark.parametrize("eps, nu", MATERIALS)
 def test_curve_matches_direct_random(eps, nu, unloading):
     c = get_curve(eps, nu, unloading)
-    assert c.v_max == pytest.approx(direct.v1_star_limit(eps, nu), rel=1e-14)
+    assert c.v_max == pytest.approx(fastrest.limit(eps, nu).v1_star, rel=1e-14)
     check(compare(c, random_speeds(c.v_max)), f"eps_y={eps} nu={nu} {unloading} random")
 
 
@@ -145,7 +145,7 @@ def test_etsion_jump_at_switch_is_sharp(eps, nu):
         assert c.loss(v) == 0.0, v
         assert c.e(np.array([v]))[0] == 1.0, v
     for v in (math.nextafter(V_SWITCH, math.inf), V_SWITCH * (1 + 1e-12), V_SWITCH * (1 + 1e-6)):
-        ref = direct.e_star(v, eps, nu, "etsion")
+        ref = direct.e_exact(v, eps, nu, "etsion")
         assert abs(ref - 1.0) > 1e-4  # the model's jump at this material
         got = c.e(v)
         assert got == pytest.approx(ref, rel=TOL_E, abs=0), v
@@ -170,7 +170,7 @@ def test_onset_loss_relative_accuracy(unloading):
     """1 - e^2 keeps full relative accuracy as V1* -> 1 (no cancellation)."""
     c = get_curve(0.005, 0.33, unloading)
     for v in (1.0 + 1e-12, 1.0 + 1e-9, 1.0 + 1e-6):
-        ref = direct.loss_star(v, 0.005, 0.33, unloading)
+        ref = direct.loss_exact(v, 0.005, 0.33, unloading)
         got = c.loss(v)
         if unloading in SIGN_CHANGING:  # e = 1 exactly under Hertz loading
             assert got == 0.0 and ref == 0.0
@@ -185,13 +185,13 @@ def test_elastic_region():
     v = np.array([0.0, 1e-300, 1e-10, 0.3, 0.999, 1.0])
     assert np.all(c.e(v) == 1.0)
     assert np.all(c.loss(v) == 0.0)
-    np.testing.assert_allclose(c.omega_m(v), direct.omega_m_star(v, 0.005, 0.33), rtol=1e-15, atol=0)
+    np.testing.assert_allclose(c.omega_m(v), direct.omega_m_exact(v, 0.005, 0.33), rtol=1e-15, atol=0)
 
 
 def test_extrapolate_matches_direct_and_warns():
     eps, nu = 0.005, 0.33
-    lim = direct.v1_star_limit(eps, nu)
-    top = direct.v1_star_limit(eps, nu, extrapolate=True)
+    lim = fastrest.limit(eps, nu).v1_star
+    top = fastrest.limit(eps, nu, extrapolate=True).v1_star
     v_max = min(1.4 * lim, top)
     with pytest.warns(ExtrapolationWarning, match="425"):
         c = fastrest.curve(eps, nu, v_max=v_max, extrapolate=True)
@@ -208,7 +208,7 @@ def test_extrapolate_matches_direct_and_warns():
             f(float(v[-1]))                       # the scalar path too
     with warnings.catch_warnings():                # inside the validated range: silent
         warnings.simplefilter("error")
-        assert c.e(lim * 0.5) == pytest.approx(direct.e_star(lim * 0.5, eps, nu), rel=TOL_E, abs=0)
+        assert c.e(lim * 0.5) == pytest.approx(direct.e_exact(lim * 0.5, eps, nu), rel=TOL_E, abs=0)
     with pytest.warns(ExtrapolationWarning):
         s = fastrest.scene([(eps, nu), (0.002, 0.3)], v_max=[v_max, 100.0], extrapolate=True)
     with pytest.warns(ExtrapolationWarning):
@@ -222,7 +222,7 @@ def test_extrapolate_not_needed_does_not_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         c = fastrest.curve(0.005, 0.33, v_max=100.0, extrapolate=True)
-    assert c.e(50.0) == pytest.approx(direct.e_star(50.0, 0.005, 0.33), rel=TOL_E, abs=0)
+    assert c.e(50.0) == pytest.approx(direct.e_exact(50.0, 0.005, 0.33), rel=TOL_E, abs=0)
 
 
 # ============================================================================================
@@ -287,7 +287,7 @@ def test_v_max_below_switch_refuses_higher_speeds():
     (the docstring: "Speeds outside [0, v_max] raise ValueError"; jit: NaN for V1* > v_max)."""
     c = fastrest.curve(0.005, 0.33, v_max=2.0)
     assert c.v_max == 2.0
-    assert c.e(2.0) == pytest.approx(direct.e_star(2.0, 0.005, 0.33), rel=TOL_E, abs=0)
+    assert c.e(2.0) == pytest.approx(direct.e_exact(2.0, 0.005, 0.33), rel=TOL_E, abs=0)
     with pytest.raises(ValueError, match="v_max"):
         c.e(2.1)
     with pytest.raises(ValueError, match="v_max"):
@@ -296,7 +296,7 @@ def test_v_max_below_switch_refuses_higher_speeds():
 
 
 def test_v_max_beyond_425_raises():
-    lim = direct.v1_star_limit(0.005, 0.33)
+    lim = fastrest.limit(0.005, 0.33).v1_star
     with pytest.raises(ValueError, match="425"):
         fastrest.curve(0.005, 0.33, v_max=lim * 1.01)
     with pytest.raises(ValueError, match="425"):
@@ -304,7 +304,7 @@ def test_v_max_beyond_425_raises():
 
 
 def test_extrapolate_past_a_over_r_1_raises():
-    top = direct.v1_star_limit(0.01, 0.45, extrapolate=True)
+    top = fastrest.limit(0.01, 0.45, extrapolate=True).v1_star
     with pytest.raises(ValueError, match="a/R"):
         fastrest.curve(0.01, 0.45, v_max=top * 1.01, extrapolate=True)
 
@@ -320,7 +320,7 @@ def test_outside_validated_range_warns(eps, nu):
     with pytest.warns(ValidityWarning, match="eps_y" if eps != 0.005 else "nu"):
         c = fastrest.curve(eps, nu, v_max=20.0)
     with pytest.warns(ValidityWarning):
-        ref = direct.e_star(15.0, eps, nu)
+        ref = direct.e_exact(15.0, eps, nu)
     assert c.e(15.0) == pytest.approx(ref, rel=TOL_E, abs=0)
 
 
@@ -449,24 +449,6 @@ def test_options_are_keyword_only():
     with pytest.raises(TypeError):
         build_curve_data(0.005, 0.33, "jcg", 10.0)
     assert fastrest.curve(0.005, 0.33, "jcg", v_max=10.0).v_max == 10.0
-
-
-def test_names_from_before_the_split_still_import():
-    """fastrest.curve was one module: its public names still import from there (same objects)."""
-    import fastrest.cells as cells
-    import fastrest.curve_data as cd
-    import fastrest.scene  # noqa: F401  (the module; fastrest.scene is the function)
-    import sys
-    from fastrest.curve import (HERTZ_BASE, N_HERTZ, CurveData, Scene, SceneData, build_curve_data, closed_form,
-                                curve_value, e_curve, hertz_rows, jg_nodes, scene_value)
-    sc = sys.modules["fastrest.scene"]
-    assert (Scene, SceneData, scene_value) == (sc.Scene, sc.SceneData, sc.scene_value)
-    assert (CurveData, build_curve_data, curve_value, e_curve) == (cd.CurveData, cd.build_curve_data, cd.curve_value,
-                                                                   cd.e_curve)
-    assert (HERTZ_BASE, N_HERTZ, closed_form, hertz_rows, jg_nodes) == (cells.HERTZ_BASE, cells.N_HERTZ, cells.closed_form,
-                                                                        cells.hertz_rows, cells.jg_nodes)
-    with pytest.raises(ImportError):
-        from fastrest.curve import no_such_name  # noqa: F401
 
 
 def test_fast_scalar_takes_real_scalars_only():

@@ -44,17 +44,17 @@ MODEL_MD_ROWS = [
 
 @pytest.mark.parametrize("v, eps, nu, wm, e_jcg, e_ets", MODEL_MD_ROWS)
 def test_model_md_check_values(v, eps, nu, wm, e_jcg, e_ets):
-    assert direct.omega_m_star(v, eps, nu) == pytest.approx(wm, rel=1e-10, abs=0)
-    assert direct.e_star(v, eps, nu, "jcg") == pytest.approx(e_jcg, abs=1e-10)
-    assert direct.e_star(v, eps, nu) == direct.e_star(v, eps, nu, "jcg")
-    assert direct.e_star(v, eps, nu, "etsion") == pytest.approx(e_ets, abs=1e-10)
+    assert direct.omega_m_exact(v, eps, nu) == pytest.approx(wm, rel=1e-10, abs=0)
+    assert direct.e_exact(v, eps, nu, "jcg") == pytest.approx(e_jcg, abs=1e-10)
+    assert direct.e_exact(v, eps, nu) == direct.e_exact(v, eps, nu, "jcg")
+    assert direct.e_exact(v, eps, nu, "etsion") == pytest.approx(e_ets, abs=1e-10)
     if e_ets == 1.0:
-        assert direct.e_star(v, eps, nu, "etsion") == 1.0
+        assert direct.e_exact(v, eps, nu, "etsion") == 1.0
     s = direct.solve(v, eps, nu, "jcg")
-    assert s["omega_m_star"] == direct.omega_m_star(v, eps, nu)
-    assert s["e"] == direct.e_star(v, eps, nu)
-    assert s["loss"] == direct.loss_star(v, eps, nu)
-    assert (s["omega_res_star"], s["R_res_ratio"]) == direct.residual_star(v, eps, nu)
+    assert s["omega_m_star"] == direct.omega_m_exact(v, eps, nu)
+    assert s["e"] == direct.e_exact(v, eps, nu)
+    assert s["loss"] == direct.loss_exact(v, eps, nu)
+    assert (s["omega_res_star"], s["R_res_ratio"]) == direct.residual_exact(v, eps, nu)
 
 
 # ============================================================================================
@@ -119,7 +119,7 @@ def test_sample_spread(ref_sample):
 
 def test_reference_omega_m(ref_sample):
     rows, v, eps, nu = ref_sample
-    got = direct.omega_m_star(v, eps, nu)
+    got = direct.omega_m_exact(v, eps, nu)
     worst, r = _worst(got, rows, "omega_m_star", "omega_m_star")
     assert worst <= 1e-12, r
 
@@ -127,8 +127,8 @@ def test_reference_omega_m(ref_sample):
 @pytest.mark.parametrize("unloading", UNLOADINGS)
 def test_reference_e_and_loss(ref_sample, unloading):
     rows, v, eps, nu = ref_sample
-    e = direct.e_star(v, eps, nu, unloading)
-    loss = direct.loss_star(v, eps, nu, unloading)
+    e = direct.e_exact(v, eps, nu, unloading)
+    loss = direct.loss_exact(v, eps, nu, unloading)
     worst_e, r = _worst(e, rows, ("e", unloading), f"e_star {unloading}")
     assert worst_e <= 1e-12, r
     worst_l, r = _worst(loss, rows, ("loss", unloading), f"loss_star {unloading}")
@@ -138,7 +138,7 @@ def test_reference_e_and_loss(ref_sample, unloading):
 @pytest.mark.parametrize("unloading", UNLOADINGS)
 def test_reference_residual(ref_sample, unloading):
     rows, v, eps, nu = ref_sample
-    w_res, r_ratio = direct.residual_star(v, eps, nu, unloading)
+    w_res, r_ratio = direct.residual_exact(v, eps, nu, unloading)
     worst_w, r = _worst(w_res, [dict(x, k=x[("residual", unloading)][0]) for x in rows], "k",
                         f"w_res* {unloading}")
     assert worst_w <= 1e-12, r
@@ -151,19 +151,19 @@ def test_reference_corner_of_validated_range():
     """eps_y = 0.01, nu = 0.45 is where a/R is largest at w_m = 425 (the law ends at w = 471.6)."""
     eps, nu = 0.01, 0.45
     v = ref.ref_v1_star_at(400.0, eps, nu)
-    assert direct.omega_m_star(v, eps, nu) == pytest.approx(400.0, rel=1e-12)
+    assert direct.omega_m_exact(v, eps, nu) == pytest.approx(400.0, rel=1e-12)
     for u in UNLOADINGS:
-        assert rel_err(direct.e_star(v, eps, nu, u), ref.ref_e_star(v, eps, nu, u)) <= 1e-12
+        assert rel_err(direct.e_exact(v, eps, nu, u), ref.ref_e_star(v, eps, nu, u)) <= 1e-12
 
 
 def test_package_corner_of_validated_range_self_consistent():
     """Same corner without the reference: F(w_m(V)) = V^2 and the 425 limit is reachable."""
     eps, nu = 0.01, 0.45
-    vlim = direct.v1_star_limit(eps, nu)
+    vlim = fastrest.limit(eps, nu).v1_star
     v = np.array([10.0, 300.0, vlim * (1 - 1e-9)])
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        wm = direct.omega_m_star(v, eps, nu)
+        wm = direct.omega_m_exact(v, eps, nu)
     np.testing.assert_allclose(energy.loading_energy(wm, eps, nu), v ** 2, rtol=1e-13)
     assert wm[-1] == pytest.approx(425.0, rel=1e-8)
 
@@ -176,15 +176,15 @@ HARD_MATERIALS = [(0.005, 0.33), (0.0005, 0.2), (0.01, 0.45)]
 @pytest.mark.parametrize("eps, nu", HARD_MATERIALS)
 def test_onset_exactly_one(eps, nu):
     for u in UNLOADINGS:
-        assert direct.e_star(1.0, eps, nu, u) == 1.0
-        assert direct.loss_star(1.0, eps, nu, u) == 0.0
-        assert direct.residual_star(1.0, eps, nu, u) == (0.0, 1.0)
-    assert direct.omega_m_star(1.0, eps, nu) == 1.0
+        assert direct.e_exact(1.0, eps, nu, u) == 1.0
+        assert direct.loss_exact(1.0, eps, nu, u) == 0.0
+        assert direct.residual_exact(1.0, eps, nu, u) == (0.0, 1.0)
+    assert direct.omega_m_exact(1.0, eps, nu) == 1.0
     # below onset: elastic, w_m = V^0.8 exactly
     for v in (0.0, 1e-300, 0.3, 0.999999):
-        assert direct.e_star(v, eps, nu) == 1.0
-        assert direct.loss_star(v, eps, nu, "jcg") == 0.0
-        assert direct.omega_m_star(v, eps, nu) == v ** 0.8
+        assert direct.e_exact(v, eps, nu) == 1.0
+        assert direct.loss_exact(v, eps, nu, "jcg") == 0.0
+        assert direct.omega_m_exact(v, eps, nu) == v ** 0.8
 
 
 @pytest.mark.parametrize("eps, nu", HARD_MATERIALS)
@@ -192,8 +192,8 @@ def test_onset_exactly_one(eps, nu):
 def test_just_above_onset(eps, nu, dv):
     v = 1.0 + dv
     for u in UNLOADINGS:
-        e = direct.e_star(v, eps, nu, u)
-        loss = direct.loss_star(v, eps, nu, u)
+        e = direct.e_exact(v, eps, nu, u)
+        loss = direct.loss_exact(v, eps, nu, u)
         loss_ref = ref.ref_loss_star(v, eps, nu, u)
         assert rel_err(loss, loss_ref) <= 1e-12, (u, loss, loss_ref)
         assert rel_err(e, ref.ref_e_star(v, eps, nu, u)) <= 1e-15
@@ -202,7 +202,7 @@ def test_just_above_onset(eps, nu, dv):
             assert e == 1.0 and loss == 0.0               # Hertz loading: exactly elastic
         else:
             assert 0.0 < loss < 1e-10
-    assert rel_err(direct.omega_m_star(v, eps, nu), ref.ref_omega_m_star(v, eps, nu)) <= 1e-15
+    assert rel_err(direct.omega_m_exact(v, eps, nu), ref.ref_omega_m_star(v, eps, nu)) <= 1e-15
 
 
 @pytest.mark.parametrize("eps, nu", HARD_MATERIALS)
@@ -210,13 +210,13 @@ def test_just_above_onset(eps, nu, dv):
 @pytest.mark.parametrize("delta", [1e-12, 1e-6])
 def test_switch_at_w_1p9_matches_reference(eps, nu, side, delta):
     v = V_SWITCH * (1.0 + side * delta)
-    wm = direct.omega_m_star(v, eps, nu)
+    wm = direct.omega_m_exact(v, eps, nu)
     assert rel_err(wm, ref.ref_omega_m_star(v, eps, nu)) <= 1e-12
     assert (wm < 1.9) if side < 0 else (wm > 1.9)
     for u in UNLOADINGS:
-        assert rel_err(direct.e_star(v, eps, nu, u), ref.ref_e_star(v, eps, nu, u)) <= 1e-12
-        assert rel_err(direct.loss_star(v, eps, nu, u), ref.ref_loss_star(v, eps, nu, u)) <= 1e-12
-        w_res, rr = direct.residual_star(v, eps, nu, u)
+        assert rel_err(direct.e_exact(v, eps, nu, u), ref.ref_e_star(v, eps, nu, u)) <= 1e-12
+        assert rel_err(direct.loss_exact(v, eps, nu, u), ref.ref_loss_star(v, eps, nu, u)) <= 1e-12
+        w_res, rr = direct.residual_exact(v, eps, nu, u)
         w_res_ref, rr_ref = ref.ref_residual_star(v, eps, nu, u)
         assert abs(w_res - w_res_ref) <= 1e-12 * wm
         assert rel_err(rr, rr_ref) <= 1e-12
@@ -228,12 +228,12 @@ def test_etsion_jump_not_smeared(eps):
     nu = 0.33
     below = V_SWITCH * (1 - np.array([1e-6, 1e-9, 1e-12, 1e-14]))
     above = V_SWITCH * (1 + np.array([1e-14, 1e-12, 1e-9, 1e-6]))
-    assert np.all(direct.e_star(below, eps, nu, "etsion") == 1.0)
-    e_above = direct.e_star(above, eps, nu, "etsion")
+    assert np.all(direct.e_exact(below, eps, nu, "etsion") == 1.0)
+    e_above = direct.e_exact(above, eps, nu, "etsion")
     assert np.all(e_above < 0.999)
     assert np.ptp(e_above) < 1e-6                      # a clean step, no ramp
     # JCG e has a (small) jump there too
-    e_jcg = direct.e_star(np.r_[below[-1], above[0]], eps, nu, "jcg")
+    e_jcg = direct.e_exact(np.r_[below[-1], above[0]], eps, nu, "jcg")
     assert e_jcg[1] < e_jcg[0] - 1e-4
 
 
@@ -245,9 +245,9 @@ def test_switch_exact_float_matches_reference():
     for _ in range(3):
         vs = [float(np.nextafter(vs[0], 0.0))] + vs + [float(np.nextafter(vs[-1], 3.0))]
     for v in vs:
-        assert rel_err(direct.omega_m_star(v, eps, nu), ref.ref_omega_m_star(v, eps, nu)) <= 1e-15
+        assert rel_err(direct.omega_m_exact(v, eps, nu), ref.ref_omega_m_star(v, eps, nu)) <= 1e-15
         for u in UNLOADINGS:
-            e, e_ref = direct.e_star(v, eps, nu, u), ref.ref_e_star(v, eps, nu, u)
+            e, e_ref = direct.e_exact(v, eps, nu, u), ref.ref_e_star(v, eps, nu, u)
             assert rel_err(e, e_ref) <= 1e-12, (v, u, e, e_ref)
 
 
@@ -256,17 +256,17 @@ def test_limit_w425(eps, nu):
     v425 = ref.ref_v1_star_at(425.0, eps, nu)
     with warnings.catch_warnings():
         warnings.simplefilter("error")           # in range: no warning at all
-        wm = direct.omega_m_star(v425, eps, nu)
+        wm = direct.omega_m_exact(v425, eps, nu)
         for u in UNLOADINGS:
-            assert rel_err(direct.e_star(v425, eps, nu, u), ref.ref_e_star(v425, eps, nu, u)) <= 1e-12
+            assert rel_err(direct.e_exact(v425, eps, nu, u), ref.ref_e_star(v425, eps, nu, u)) <= 1e-12
         # extrapolate=True below the limit: same number, no warning
         v_in = v425 * (1 - 1e-12)
-        assert direct.omega_m_star(v_in, eps, nu, extrapolate=True) == direct.omega_m_star(v_in, eps, nu)
+        assert direct.omega_m_exact(v_in, eps, nu, extrapolate=True) == direct.omega_m_exact(v_in, eps, nu)
     assert wm == pytest.approx(425.0, rel=1e-12)
-    assert direct.v1_star_limit(eps, nu) == pytest.approx(v425, rel=1e-13)
+    assert fastrest.limit(eps, nu).v1_star == pytest.approx(v425, rel=1e-13)
 
     v_over = v425 * (1 + 1e-9)
-    for fn in (direct.omega_m_star, direct.e_star, direct.loss_star, direct.residual_star):
+    for fn in (direct.omega_m_exact, direct.e_exact, direct.loss_exact, direct.residual_exact):
         with pytest.raises(ValueError, match="425") as ei:
             fn(v_over, eps, nu)
         m = re.search(r"V1\* = ([0-9.eE+-]+)", str(ei.value))
@@ -276,10 +276,10 @@ def test_limit_w425(eps, nu):
 
     for v in (v_over, v425 * 1.01):
         with pytest.warns(ExtrapolationWarning):
-            e = direct.e_star(v, eps, nu, "jcg", extrapolate=True)
+            e = direct.e_exact(v, eps, nu, "jcg", extrapolate=True)
         assert rel_err(e, ref.ref_e_star(v, eps, nu, "jcg")) <= 1e-12
         with pytest.warns(ExtrapolationWarning):
-            wm = direct.omega_m_star(v, eps, nu, extrapolate=True)
+            wm = direct.omega_m_exact(v, eps, nu, extrapolate=True)
         assert wm > 425.0
         assert rel_err(wm, ref.ref_omega_m_star(v, eps, nu)) <= 1e-12
     assert issubclass(ExtrapolationWarning, ValidityWarning)
@@ -292,16 +292,16 @@ def test_large_eps_y_a_over_R_reaches_one():
     w_lim = contact.omega_star_limit(eps, nu)
     assert 100 < w_lim < 425
     with pytest.warns(ValidityWarning):
-        e = direct.e_star(100.0, eps, nu)
+        e = direct.e_exact(100.0, eps, nu)
     assert rel_err(e, ref.ref_e_star(100.0, eps, nu)) <= 1e-12
     for v in (300.0, 1e4):
         for extrapolate in (False, True):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)
                 with pytest.raises(ValueError, match="a/R"):
-                    direct.e_star(v, eps, nu, extrapolate=extrapolate)
+                    direct.e_exact(v, eps, nu, extrapolate=extrapolate)
                 with pytest.raises(ValueError, match="a/R"):
-                    direct.omega_m_star(v, eps, nu, extrapolate=extrapolate)
+                    direct.omega_m_exact(v, eps, nu, extrapolate=extrapolate)
 
 
 @pytest.mark.parametrize("frac", [1e-9, 1e-6, 1e-4, 2e-3])
@@ -315,10 +315,10 @@ def test_large_eps_y_a_over_R_reaches_one():
 def test_computes_just_below_a_over_R_limit(eps, nu, extrapolate, frac):
     """A speed slightly below the a/R = 1 limit has w_m below the limit, so it must compute."""
     w_lim = contact.omega_star_limit(eps, nu)
-    v = direct.v1_star_limit(eps, nu, extrapolate=True) * (1 - frac)
+    v = fastrest.limit(eps, nu, extrapolate=True).v1_star * (1 - frac)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        wm = direct.omega_m_star(v, eps, nu, extrapolate=extrapolate)
+        wm = direct.omega_m_exact(v, eps, nu, extrapolate=extrapolate)
         assert wm < w_lim
         assert energy.loading_energy(wm, eps, nu) == pytest.approx(v * v, rel=1e-13)
 
@@ -328,13 +328,13 @@ def test_computes_just_below_a_over_R_limit(eps, nu, extrapolate, frac):
 def test_nu_outside_validated_range(nu, v):
     eps = 0.005
     with pytest.warns(ValidityWarning, match="nu"):
-        wm = direct.omega_m_star(v, eps, nu)
+        wm = direct.omega_m_exact(v, eps, nu)
     assert rel_err(wm, ref.ref_omega_m_star(v, eps, nu)) <= 1e-12
     for u in UNLOADINGS:
         with pytest.warns(ValidityWarning):
-            e = direct.e_star(v, eps, nu, u)
+            e = direct.e_exact(v, eps, nu, u)
         with pytest.warns(ValidityWarning):
-            loss = direct.loss_star(v, eps, nu, u)
+            loss = direct.loss_exact(v, eps, nu, u)
         assert rel_err(e, ref.ref_e_star(v, eps, nu, u)) <= 1e-12
         assert rel_err(loss, ref.ref_loss_star(v, eps, nu, u)) <= 1e-12
 
@@ -342,14 +342,14 @@ def test_nu_outside_validated_range(nu, v):
 @pytest.mark.parametrize("eps", [0.0001, 0.02])
 def test_eps_y_outside_validated_range_warns(eps):
     with pytest.warns(ValidityWarning, match="eps_y"):
-        direct.e_star(5.0, eps, 0.3)
+        direct.e_exact(5.0, eps, 0.3)
 
 
 def test_no_warning_inside_validated_range():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        direct.e_star(np.geomspace(0.5, 500, 7), np.array(EPS_RANGE)[:, None], 0.2)
-        direct.e_star(5.0, 0.01, 0.45, "etsion")
+        direct.e_exact(np.geomspace(0.5, 500, 7), np.array(EPS_RANGE)[:, None], 0.2)
+        direct.e_exact(5.0, 0.01, 0.45, "etsion")
 
 
 # ============================================================================================
@@ -382,10 +382,10 @@ def fit_deviation():
     for each eps_y at nu = 0.33; returns {unloading: {eps_y: array}}."""
     out = {u: {} for u in UNLOADINGS}
     for eps in FIT_EPS:
-        vmax = min(1000.0, direct.v1_star_limit(eps, 0.33))
+        vmax = min(1000.0, fastrest.limit(eps, 0.33).v1_star)
         v = np.geomspace(1.0, vmax, 201)[1:]
         for u, fit in (("jcg", fit_jcg), ("etsion", fit_etsion)):
-            e = direct.e_star(v, eps, 0.33, u)
+            e = direct.e_exact(v, eps, 0.33, u)
             out[u][eps] = np.abs(fit(v, eps) - e) / e
     print()
     for u in UNLOADINGS:
@@ -442,7 +442,7 @@ frac_st = st.floats(0.0, 1.0)
 
 def _speed(eps, nu, u):
     """V1* in [0, V1*(425)) from u in [0, 1]: below 1 linearly for u < 0.2, then log-spaced."""
-    vmax = direct.v1_star_limit(eps, nu) * (1 - 1e-12)
+    vmax = fastrest.limit(eps, nu).v1_star * (1 - 1e-12)
     if u < 0.2:
         return u / 0.2
     return vmax ** ((u - 0.2) / 0.8)
@@ -451,9 +451,9 @@ def _speed(eps, nu, u):
 @given(eps_st, nu_st, frac_st)
 def test_prop_e_in_unit_interval_jcg(eps, nu, u):
     v = _speed(eps, nu, u)
-    e = direct.e_star(v, eps, nu, "jcg")
+    e = direct.e_exact(v, eps, nu, "jcg")
     assert 0.0 < e <= 1.0
-    loss = direct.loss_star(v, eps, nu, "jcg")
+    loss = direct.loss_exact(v, eps, nu, "jcg")
     assert 0.0 <= loss < 1.0
     assert loss == pytest.approx(1 - e * e, abs=4e-16)
 
@@ -462,9 +462,9 @@ def test_prop_e_in_unit_interval_jcg(eps, nu, u):
 def test_prop_e_in_unit_interval_etsion(eps, nu, u):
     """Etsion unloading keeps e <= 1 where P* jumps down at w = 1.9 (nu > ~0.323, see below)."""
     v = _speed(eps, nu, u)
-    e = direct.e_star(v, eps, nu, "etsion")
+    e = direct.e_exact(v, eps, nu, "etsion")
     assert 0.0 < e <= 1.0
-    assert direct.loss_star(v, eps, nu, "etsion") == pytest.approx(1 - e * e, abs=4e-16)
+    assert direct.loss_exact(v, eps, nu, "etsion") == pytest.approx(1 - e * e, abs=4e-16)
 
 
 @pytest.mark.parametrize("nu", [0.0, 0.2, 0.25])
@@ -476,14 +476,14 @@ def test_model_property_e_above_one_for_small_nu(nu):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         assert contact.P_star(np.nextafter(1.9, 2), eps, nu) > 1.9 ** 1.5
-        e = direct.e_star(v, eps, nu, "etsion")
+        e = direct.e_exact(v, eps, nu, "etsion")
         assert e > 1.0
         assert rel_err(e, ref.ref_e_star(v, eps, nu, "etsion")) <= 1e-12
-        assert direct.loss_star(v, eps, nu, "etsion") < 0.0
+        assert direct.loss_exact(v, eps, nu, "etsion") < 0.0
 
 
 def _pair_same_side(eps, nu, u1, u2, upper):
-    vmax = direct.v1_star_limit(eps, nu) * (1 - 1e-12)
+    vmax = fastrest.limit(eps, nu).v1_star * (1 - 1e-12)
     if upper:
         lo, hi = math.log(float(np.nextafter(V_SWITCH, 3))), math.log(vmax)
     else:
@@ -495,14 +495,14 @@ def _pair_same_side(eps, nu, u1, u2, upper):
 @given(eps_st, nu_st, frac_st, frac_st, st.booleans(), st.sampled_from(UNLOADINGS))
 def test_prop_e_non_increasing(eps, nu, u1, u2, upper, unloading):
     a, b = _pair_same_side(eps, nu, u1, u2, upper)
-    ea, eb = direct.e_star(np.array([a, b]), eps, nu, unloading)
+    ea, eb = direct.e_exact(np.array([a, b]), eps, nu, unloading)
     assert eb <= ea * (1 + 4e-16), (a, b, ea, eb)
 
 
 @given(eps_st, nu_st, frac_st, frac_st, st.booleans())
 def test_prop_w_m_increasing(eps, nu, u1, u2, upper):
     a, b = _pair_same_side(eps, nu, u1, u2, upper)
-    wa, wb = direct.omega_m_star(np.array([a, b]), eps, nu)
+    wa, wb = direct.omega_m_exact(np.array([a, b]), eps, nu)
     assert wb >= wa * (1 - 4e-16)
     if b > a * (1 + 1e-9):
         assert wb > wa
@@ -537,12 +537,12 @@ def test_prop_dimensional_api_matches_normalised(imp, u, unloading):
     vs = v1 / imp.V_c
     eps, nu = imp.eps_y, imp.nu
     assert imp.e(v1, unloading=unloading) == pytest.approx(
-        direct.e_star(vs, eps, nu, unloading), rel=1e-13)
-    assert imp.max_interference(v1) == pytest.approx(direct.omega_m_star(vs, eps, nu) * imp.omega_c, rel=1e-13)
+        direct.e_exact(vs, eps, nu, unloading), rel=1e-13)
+    assert imp.max_interference(v1) == pytest.approx(direct.omega_m_exact(vs, eps, nu) * imp.omega_c, rel=1e-13)
     assert imp.rebound_velocity(v1, unloading=unloading) == pytest.approx(
-        direct.e_star(vs, eps, nu, unloading) * v1, rel=1e-13)
+        direct.e_exact(vs, eps, nu, unloading) * v1, rel=1e-13)
     w_res, R_res = imp.residual(v1, unloading=unloading)
-    w_res_s, rr_s = direct.residual_star(vs, eps, nu, unloading)
+    w_res_s, rr_s = direct.residual_exact(vs, eps, nu, unloading)
     assert w_res == pytest.approx(w_res_s * imp.omega_c, rel=1e-13, abs=1e-13 * imp.omega_c)
     assert R_res == pytest.approx(rr_s * imp.R_eff, rel=1e-13)
 
@@ -552,7 +552,7 @@ def test_dimensional_api_arrays_and_types():
     v1 = np.array([0.5, 1.0, 10.0, 100.0]) * imp.V_c
     e = imp.e(v1)
     assert isinstance(e, np.ndarray) and e.shape == (4,)
-    np.testing.assert_allclose(e, direct.e_star(v1 / imp.V_c, imp.eps_y, imp.nu), rtol=1e-13)
+    np.testing.assert_allclose(e, direct.e_exact(v1 / imp.V_c, imp.eps_y, imp.nu), rtol=1e-13)
     assert isinstance(imp.e(float(v1[2])), float)
     assert isinstance(imp.rebound_velocity(float(v1[2])), float)
     np.testing.assert_allclose(imp.rebound_velocity(v1), e * v1, rtol=1e-15)
@@ -567,10 +567,10 @@ def test_dimensional_api_arrays_and_types():
 # ============================================================================================
 # Broadcasting and types
 FUNCS = {
-    "omega_m_star": lambda v, e, n, **k: direct.omega_m_star(v, e, n),
-    "e_star": direct.e_star,
-    "loss_star": direct.loss_star,
-    "residual_star": direct.residual_star,
+    "omega_m_star": lambda v, e, n, **k: direct.omega_m_exact(v, e, n),
+    "e_star": direct.e_exact,
+    "loss_star": direct.loss_exact,
+    "residual_star": direct.residual_exact,
     "solve": direct.solve,
 }
 
@@ -639,7 +639,7 @@ def test_broadcast_does_not_modify_inputs():
 
 def test_incompatible_shapes_raise():
     with pytest.raises(ValueError):
-        direct.e_star(np.ones(3), np.full(4, 0.005), 0.33)
+        direct.e_exact(np.ones(3), np.full(4, 0.005), 0.33)
 
 
 # ============================================================================================
@@ -738,7 +738,7 @@ def test_W_star_elastic_part():
 def test_loading_energy_inverts_omega_m(eps, nu):
     w = np.array([1.2, 1.9, 2.0, 7.7, 123.0, 425.0])
     v = np.sqrt(energy.loading_energy(w, eps, nu))
-    np.testing.assert_allclose(direct.omega_m_star(v, eps, nu), w, rtol=1e-13)
+    np.testing.assert_allclose(direct.omega_m_exact(v, eps, nu), w, rtol=1e-13)
 
 
 def test_law_bad_inputs():

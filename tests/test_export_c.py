@@ -10,6 +10,7 @@ import subprocess
 import numpy as np
 import pytest
 
+import fastrest
 from fastrest import cli
 from fastrest.cells import HERTZ_EDGES
 from fastrest.curve_data import curve_array
@@ -125,8 +126,7 @@ def test_c_header_default_reaches_w425_and_records_materials(tmp_path):
     out = tmp_path / "h.h"
     c_header.write_header(out, [(0.005, 0.33)])
     text = out.read_text()
-    from fastrest.limits import v1_star_limit
-    assert f"v_max = {v1_star_limit(0.005, 0.33)!r}" in text
+    assert f"v_max = {fastrest.limit(0.005, 0.33).v1_star!r}" in text
     assert "#define FASTREST_JCG 0" in text and "#define FASTREST_ETSION 1" in text
     assert "#define FASTREST_BRAKE 2" in text
 
@@ -151,3 +151,107 @@ def test_c_header_unwritable(tmp_path, capsys):
     assert cli.main(["export", "c", "--materials", "0.005:0.33", "--out", str(out)]) == 1
     err = capsys.readouterr().err
     assert "--out" in err and str(out) in err
+
+
+# --- a header from physical properties (issue 21 item 7) ------------------------------------------
+
+PHYSICAL_PROGRAM = r"""
+#include <stdio.h>
+#include "pairs.h"
+int main(void)
+{
+    int k, m;
+    double V;
+    printf("%d\n", FASTREST_HAS_CRITICAL);
+    for (k = 0; k < FASTREST_N_MATERIALS; k++)
+        printf("%a %a %a %a %a %a %a %a\n", fastrest_V_c[k], fastrest_omega_c[k], fastrest_P_c[k], fastrest_A_c[k],
+               fastrest_U_c[k], fastrest_E_eff[k], fastrest_R_eff[k], fastrest_mass[k]);
+    while (scanf("%d %lf", &k, &V) == 2) {
+        printf("%a", fastrest_v1_star(k, V));
+        for (m = 0; m < FASTREST_N_UNLOADING; m++)
+            printf(" %a", fastrest_e(k, fastrest_v1_star(k, V), m));
+        printf("\n");
+    }
+    return 0;
+}
+"""
+
+PAIRS_CSV = """name,E,nu,Sy,R,rho,mass,flat_E,flat_nu,flat_Sy,V_max
+steel,200e9,0.33,1.12e9,0.01,7850,,,,,
+alu_on_steel,70e9,0.33,0.28e9,0.005,2700,,200e9,0.3,,3.0
+"""
+
+
+def _compile(tmp_path, header_name, program):
+    (tmp_path / "main.c").write_text(program)
+    exe = tmp_path / "main"
+    r = subprocess.run([CC, "-std=c99", "-O2", "-Wall", "-Wextra", "-pedantic", "-Werror", "-I", str(tmp_path),
+                        str(tmp_path / "main.c"), "-o", str(exe), "-lm"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return exe
+
+
+@pytest.mark.skipif(CC is None, reason="no C compiler (`cc`) on PATH: the C header cannot be compiled here")
+def test_c_header_from_physical_properties_matches_impact(tmp_path, capsys):
+    """`export c --pairs` (the file format of `export velocity`): the header's critical values are
+    the Impact's bit for bit, fastrest_v1_star(k, V) = V/V_c, and fastrest_e(k, fastrest_v1_star(k, V))
+    is Impact.e(V) (the exact solver) within the curves' accuracy, up to each pair's V_max."""
+    import math
+
+    (tmp_path / "pairs.csv").write_text(PAIRS_CSV)
+    header = tmp_path / "pairs.h"
+    assert cli.main(["export", "c", "--pairs", str(tmp_path / "pairs.csv"), "--out", str(header)]) == 0
+    assert "V_c = 0.0514104 m/s" in capsys.readouterr().out
+    steel = fastrest.Material(200e9, 0.33, 1.12e9, rho=7850)
+    alu = fastrest.Material(70e9, 0.33, 0.28e9, rho=2700)
+    impacts = [fastrest.Impact(steel, 0.01), fastrest.Impact(alu, 0.005, flat=fastrest.Material(200e9, 0.3, math.inf))]
+    V_max = [impacts[0].V_max(), 3.0]
+    exe = _compile(tmp_path, "pairs.h", PHYSICAL_PROGRAM)
+    rng = np.random.default_rng(21)
+    V = [np.concatenate([[0.0, 0.5 * imp.V_c, imp.V_c * (1 + 1e-9), vm, vm * (1 + 1e-9)],
+                         np.exp(rng.uniform(np.log(imp.V_c), np.log(vm), 300))]) for imp, vm in zip(impacts, V_max)]
+    stdin = "".join(f"{k} {float(v)!r}\n" for k in range(2) for v in V[k]) + "2 1.0\n-1 1.0\n"
+    r = subprocess.run([str(exe)], input=stdin, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.split("\n")
+    assert lines[0] == "1"
+    for k, imp in enumerate(impacts):
+        crit = imp.critical_values()
+        got = [float.fromhex(x) for x in lines[1 + k].split()]
+        assert got == [crit[q] for q in ("V_c", "omega_c", "P_c", "A_c", "U_c", "E_eff", "R_eff", "mass")]
+    rows = np.array([[float.fromhex(x) for x in line.split()] for line in lines[3:] if line])
+    n0 = V[0].size
+    for k, imp in enumerate(impacts):
+        part = rows[:n0] if k == 0 else rows[n0:n0 + V[1].size]
+        np.testing.assert_array_equal(part[:, 0], V[k] / imp.V_c)  # the helper: V / V_c, bit for bit
+        inside = V[k] <= V_max[k]
+        assert np.isnan(part[~inside, 1:]).all()  # past the pair's V_max
+        for m, name in enumerate(("jcg", "etsion", "brake")):
+            want = imp.e(V[k][inside], name)
+            np.testing.assert_allclose(part[inside, 1 + m], want, rtol=1e-11, atol=1e-12, err_msg=f"{k} {name}")
+    assert np.isnan(rows[-2:]).all()  # unknown pairs
+
+
+def test_c_header_from_options_records_critical_values(tmp_path, capsys):
+    """--E --nu --Sy --R --rho as `export velocity` takes them; --V-max in m/s; mixing with --materials
+    or --v-max, and --pairs with --E, are refused naming the options."""
+    out = tmp_path / "one.h"
+    argv = ["export", "c", "--E", "200e9", "--nu", "0.33", "--Sy", "1.12e9", "--R", "0.01", "--rho", "7850"]
+    assert cli.main(argv + ["--V-max", "5", "--out", str(out)]) == 0
+    text = out.read_text()
+    assert "#define FASTREST_HAS_CRITICAL 1" in text and "static inline double fastrest_v1_star(int k, double V)" in text
+    assert "--E 200000000000.0" in text and "--V-max 5.0" in text
+    imp = fastrest.Impact(fastrest.Material(200e9, 0.33, 1.12e9, rho=7850), 0.01)
+    assert f"fastrest_V_c[FASTREST_N_MATERIALS] = {{{imp.V_c.hex()}}}" in text
+    assert f"v_max = {5.0 / imp.V_c!r}" in text
+    capsys.readouterr()
+    for extra, option in ([["--V-max", "500"], "--V-max"], [["--materials", "0.005:0.33"], "--materials"],
+                          [["--v-max", "5"], "--v-max"], [["--pairs", "x.csv"], "--pairs"]):
+        bad = tmp_path / "bad.h"
+        assert cli.main(argv + extra + ["--out", str(bad)]) == 2
+        assert option in capsys.readouterr().err
+        assert not bad.exists()
+    # a normalised header has no critical values
+    c_header.write_header(tmp_path / "norm.h", [(0.005, 0.33)])
+    norm = (tmp_path / "norm.h").read_text()
+    assert "#define FASTREST_HAS_CRITICAL 0" in norm and "fastrest_v1_star" not in norm

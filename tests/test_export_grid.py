@@ -10,7 +10,6 @@ import pytest
 import fastrest
 from fastrest import cli
 from fastrest.direct import impact_array
-from fastrest.limits import v1_star_limit
 
 xr = pytest.importorskip("xarray")
 pytest.importorskip("h5netcdf")
@@ -59,7 +58,7 @@ def test_round_trip_variables_coords_attrs(grid_file):
 def test_nan_outside_the_domain(grid_file):
     with xr.open_dataset(grid_file, engine="h5netcdf") as ds:
         v, e, n = np.meshgrid(ds.v1_star.values, ds.eps_y.values, ds.nu.values, indexing="ij")
-        lim = np.array([v1_star_limit(a, b) for a, b in zip(e[0].ravel(), n[0].ravel())]).reshape(e[0].shape)
+        lim = np.array([fastrest.limit(a, b).v1_star for a, b in zip(e[0].ravel(), n[0].ravel())]).reshape(e[0].shape)
         beyond = v > lim[None] * (1 + 1e-9)
         inside = v < lim[None] * (1 - 1e-9)
         assert beyond.any()
@@ -75,7 +74,7 @@ def test_interp_against_direct_solver(grid_file):
         m = 3000
         e = rng.uniform(ds.eps_y.values[0], ds.eps_y.values[-1], m)
         n = rng.uniform(ds.nu.values[0], ds.nu.values[-1], m)
-        lim = np.array([v1_star_limit(a, b) for a, b in zip(e, n)])
+        lim = np.array([fastrest.limit(a, b).v1_star for a, b in zip(e, n)])
         v = np.exp(rng.uniform(0, 1, m) * np.log(lim))
         pts = dict(v1_star=xr.DataArray(v, dims="p"), eps_y=xr.DataArray(e, dims="p"), nu=xr.DataArray(n, dims="p"))
         for code, model in enumerate(fastrest.unloading.NAMES):

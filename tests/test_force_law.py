@@ -100,7 +100,7 @@ def test_one_cycle_dissipates_the_energy_balance_loss(unloading, v1):
     """Loading to w_m(V1*) and unloading to separation dissipates U_c (1 - e^2) V1*^2."""
     eps, nu = 0.005, 0.33
     law = fastrest.contact_law(eps, nu, unloading)
-    wm = direct.omega_m_star(v1, eps, nu)
+    wm = direct.omega_m_exact(v1, eps, nu)
     pieces = [(0.0, min(wm, 1.9))] + ([(1.9, wm)] if wm > 1.9 else [])
     work_in = sum(2.5 * quad(lambda w: _single(law, w), a, b, epsabs=0, epsrel=1e-13, limit=200)[0]
                   for a, b in pieces)
@@ -110,7 +110,7 @@ def test_one_cycle_dissipates_the_energy_balance_loss(unloading, v1):
     work_out = 2.5 * quad(lambda w: law.force([w], state.copy())[0], max(w_res, 0.0), wm,
                           epsabs=0, epsrel=1e-13, limit=200)[0]
     assert work_in == pytest.approx(v1**2, rel=1e-11)
-    loss = direct.loss_star(v1, eps, nu, unloading)
+    loss = direct.loss_exact(v1, eps, nu, unloading)
     assert (work_in - work_out) / v1**2 == pytest.approx(loss, rel=1e-9, abs=1e-12)
 
 
@@ -120,7 +120,7 @@ MATERIALS = [(0.0005, 0.2), (0.005, 0.33), (0.01, 0.45), (0.002, 0.45)]
 
 
 def _speeds(eps, nu, unloading):
-    top = direct.v1_star_limit(eps, nu) * (1 - 1e-6)  # Verlet overshoots w_m by O(dt^2)
+    top = fastrest.limit(eps, nu).v1_star * (1 - 1e-6)  # Verlet overshoots w_m by O(dt^2)
     return [1.01, 1.5, 2.2, 2.3, 5.0, 40.0, top]
 
 
@@ -237,6 +237,44 @@ def test_contact_force_in_a_parallel_user_loop_matches_python():
         np.testing.assert_array_equal(out[k], law.force(w[k]))
 
 
+@numba.njit(parallel=True)
+def _many_stacked(laws, material, states, w, out):
+    for k in numba.prange(w.shape[0]):
+        for i in range(w.shape[1]):
+            out[k, i] = frj.contact_force_stacked(laws, material[k], states[k], w[k, i])
+
+
+def test_several_materials_in_one_parallel_loop_match_each_law():
+    """Issue 21: a tuple of ContactLaw.data cannot be indexed by material inside prange; the stacked
+    laws can, and give each law's forces bit for bit (three materials, three unloading models, a
+    law with a smaller w_max, the last material's rows placed after the others')."""
+    from fastrest.force_law import stack_laws
+
+    laws = [fastrest.contact_law(0.005, 0.33, "etsion"), fastrest.contact_law(0.0008, 0.22, "jcg", w_max=150.0),
+            fastrest.contact_law(0.009, 0.42, "brake")]
+    stacked = stack_laws(laws)
+    assert stacked.p_rows.shape[0] == sum(law.data.p_rows.shape[0] for law in laws)
+    rng = np.random.default_rng(21)
+    w = np.clip(np.cumsum(rng.normal(0.0, 2.0, (50, 150)), axis=1), -5, 140)
+    material = np.arange(50) % 3
+    material[-2:] = [3, -1]  # no such material: NaN
+    w[1, 100:] = 160.0  # material 1's law ends at w_max = 150: NaN from there, as contact_force
+    out = np.empty_like(w)
+    states = np.zeros((50, STATE_SIZE))
+    _many_stacked(stacked, material, states, w, out)
+    for k in range(48):
+        want = laws[material[k]].force(w[k]) if k != 1 else np.r_[laws[1].force(w[k, :100]), [np.nan] * 50]
+        np.testing.assert_array_equal(out[k], want)
+    assert np.isnan(out[-2:]).all() and np.isnan(states[-2:]).all() and np.isnan(states[1]).all()
+    # a material index as an integer-valued float, as the jit API takes; a fraction is no material
+    assert frj.contact_force_stacked(stacked, 2.0, np.zeros(STATE_SIZE), 10.0) == laws[2].force([10.0])[0]
+    assert math.isnan(frj.contact_force_stacked(stacked, 1.5, np.zeros(STATE_SIZE), 10.0))
+    with pytest.raises(TypeError, match="ContactLaw"):
+        stack_laws([laws[0].data])
+    with pytest.raises(ValueError, match="1 to 65536"):
+        stack_laws([])
+
+
 def test_dimensional_law_and_critical_scales_agree_with_impact():
     steel = fastrest.Material(200e9, 0.33, 1.12e9, 7800)
     alu = fastrest.Material(70e9, 0.33, 0.3e9, 2700)
@@ -310,14 +348,14 @@ def test_limit_speed_integrates_with_any_step_count():
     there must integrate too, whatever the step (Verlet overshoots w_m* = 425 by O(dt^2); it used to
     raise), and land on the energy balance's e to the scheme's accuracy."""
     law = fastrest.contact_law(0.01, 0.45)
-    lim = direct.v1_star_limit(0.01, 0.45)
-    ref = direct.e_star(lim, 0.01, 0.45)
+    lim = fastrest.limit(0.01, 0.45).v1_star
+    ref = direct.e_exact(lim, 0.01, 0.45)
     for n, tol in ((10, 1e-2), (13, 1e-2), (2000, 1e-6), (STEPS_1E8, 1e-8)):
         r = law.impact(lim, steps_per_contact=n)
         assert abs(r["e"] / ref - 1) < tol, n
         assert abs(r["omega_m_star"] / 425.0 - 1) < 10 * tol, n
     for m in ("etsion", "brake"):
-        r = fastrest.contact_law(0.01, 0.2, m).impact(direct.v1_star_limit(0.01, 0.2), steps_per_contact=37)
+        r = fastrest.contact_law(0.01, 0.2, m).impact(fastrest.limit(0.01, 0.2).v1_star, steps_per_contact=37)
         assert math.isfinite(r["e"])
     # a speed past the limit is refused before integrating, naming the limit speed
     with pytest.raises(ValueError, match=r"v1_star = .* w_m\* > 425.*V1\* = 818\.47"):
@@ -325,11 +363,11 @@ def test_limit_speed_integrates_with_any_step_count():
 
 
 def test_force_accepts_the_direct_solvers_w_m_at_the_limit_speed():
-    """direct.omega_m_star at the limit speed was 425 + 5 ulp (the Newton step clamped through
+    """direct.omega_m_exact at the limit speed was 425 + 5 ulp (the Newton step clamped through
     e^(ln 425)); it is 425 (the solver clamps at w_hi itself), which the law serves."""
     for eps, nu in ((0.01, 0.45), (0.005, 0.33), (0.0005, 0.2), (0.01, 0.2)):
-        lim = direct.v1_star_limit(eps, nu)
-        wm = direct.omega_m_star(lim, eps, nu)
+        lim = fastrest.limit(eps, nu).v1_star
+        wm = direct.omega_m_exact(lim, eps, nu)
         assert wm <= 425.0
         law = fastrest.contact_law(eps, nu)
         assert law.force([wm])[0] == pytest.approx(fastrest.P_star(wm, eps, nu), rel=1e-13)

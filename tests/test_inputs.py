@@ -32,7 +32,7 @@ def _named(name):
 def test_not_real_raises_type_error_naming_parameter(bad, position, name):
     args = [5.0, 0.005, 0.33]
     args[position] = bad
-    for f in (fastrest.e_star, fastrest.omega_m_star, fastrest.loss_star, direct.e_star, direct.omega_m_star):
+    for f in (fastrest.e_star, fastrest.omega_m_star, fastrest.loss_star, direct.e_exact, direct.omega_m_exact):
         with pytest.raises(TypeError, match=_named(name)):
             f(*args)
 
@@ -51,7 +51,7 @@ def test_curve_and_scene_reject_not_real(bad):
 
 
 def test_real_number_types_accepted():
-    ref = direct.e_star(5.0, 0.005, 0.33)
+    ref = direct.e_exact(5.0, 0.005, 0.33)
     for v in (5, np.int32(5), np.float32(5.0), np.array(5.0), [5.0], np.array([5], dtype=np.uint8),
               np.array([5.0], dtype=object)):
         assert np.ravel(fastrest.e_star(v, 0.005, 0.33))[0] == pytest.approx(ref, rel=1e-9)
@@ -91,7 +91,7 @@ def steel_impact():
 def test_impact_limit_in_metres_per_second():
     imp = steel_impact()
     v_max = imp.V_max()
-    assert v_max == pytest.approx(direct.v1_star_limit(imp.eps_y, imp.nu) * imp.V_c, rel=1e-15)
+    assert v_max == pytest.approx(fastrest.limit(imp.eps_y, imp.nu).v1_star * imp.V_c, rel=1e-15)
     assert imp.max_interference(v_max * (1 - 1e-9)) / imp.omega_c == pytest.approx(425.0, rel=1e-7)
     for V in (v_max * 1.001, [1.0, v_max * 2]):
         with pytest.raises(ValueError, match=r"V1 = [0-9.e+]+ m/s gives w_m\* > 425") as exc:
@@ -112,7 +112,7 @@ def test_negative_speed_named_in_metres_per_second():
 
 
 def test_curve_v_max_named():
-    lim = direct.v1_star_limit(0.005, 0.33)
+    lim = fastrest.limit(0.005, 0.33).v1_star
     with pytest.raises(ValueError, match=r"^v_max = .* 425"):
         fastrest.curve(0.005, 0.33, v_max=lim * 1.01)
 
@@ -133,10 +133,10 @@ def test_wide_table_stops_at_a_over_r_limit():
     t = tables.Table(tables.generate(g, progress=False))
     eps, nu = 0.02, 0.32
     assert omega_star_limit_kernel(eps, nu) < 425.0
-    lim = direct.v1_star_limit(eps, nu)
+    lim = fastrest.limit(eps, nu).v1_star
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", fastrest.ValidityWarning)
-        assert t.e_star(lim * 0.99, eps, nu) == pytest.approx(direct.e_star(lim * 0.99, eps, nu), rel=1e-4)
+        assert t.e_star(lim * 0.99, eps, nu) == pytest.approx(direct.e_exact(lim * 0.99, eps, nu), rel=1e-4)
         for v in (lim * 1.001, [10.0, lim * 1.5]):
             with pytest.raises(ValueError, match="a/R reaches 1"):
                 t.e_star(v, eps, nu)
@@ -155,7 +155,7 @@ def test_single_element_inputs_raise_no_numpy_warning():
         warnings.simplefilter("error")
         direct.solve(np.array([19.0]), 0.005, 0.33, "jcg")
         fastrest.e_star(np.array([5.0]), 0.005, 0.33)
-        direct.e_star(np.array([5.0]), np.array([0.005]), 0.33)
+        direct.e_exact(np.array([5.0]), np.array([0.005]), 0.33)
 
 
 def test_submodules_reachable_after_import_fastrest():
@@ -203,7 +203,7 @@ def test_jit_table_functions_reject_unknown_unloading():
         e, loss = both(d, u)
         assert math.isnan(e) and math.isnan(loss), u
     e, loss = both(d, frj.ETSION)
-    assert e == pytest.approx(direct.e_star(5.0, 0.005, 0.33, unloading="etsion"), rel=1e-9)
+    assert e == pytest.approx(direct.e_exact(5.0, 0.005, 0.33, unloading="etsion"), rel=1e-9)
     for q in (-1, d.n_quantities):
         assert math.isnan(tables.table_value(d, q, 5.0, 0.005, 0.33))
 
@@ -217,8 +217,8 @@ def _warning_line(f):
 
 
 @pytest.mark.parametrize("call", [
-    lambda: direct.e_star(2000.0, 0.005, 0.33, extrapolate=True),
-    lambda: direct.e_star(5.0, 0.02, 0.33),
+    lambda: direct.e_exact(2000.0, 0.005, 0.33, extrapolate=True),
+    lambda: direct.e_exact(5.0, 0.02, 0.33),
     lambda: steel_impact().e(100.0, extrapolate=True),
     lambda: fastrest.Impact(fastrest.Material(200e9, 0.1, 1e9, rho=7800), 0.01).e(1.0),
     lambda: fastrest.scene([(0.02, 0.33)], v_max=10.0),
@@ -252,7 +252,7 @@ def test_scene_material_index_of_any_integer_type_in_njit():
     def run(d, k, v):
         out = np.empty(k.size)
         for i in range(k.size):
-            out[i] = frj.e_scene(d, k[i], v[i])
+            out[i] = frj.e_material(d, v[i], k[i])
         return out
 
     s = fastrest.scene([(0.005, 0.3), (0.002, 0.25)], v_max=100.0)
@@ -290,13 +290,13 @@ def test_jcg_unloading_ends_where_residual_reaches_maximum_interference():
     from fastrest.unloading.jcg import OMEGA_END as JCG_OMEGA_END, residual_ratio as jcg_residual_ratio
     assert jcg_residual_ratio(JCG_OMEGA_END - 1.0) == pytest.approx(1.0, abs=1e-14)
     eps, nu = 0.0007, 0.35
-    lim_ar = direct.v1_star_limit(eps, nu, extrapolate=True)
+    lim_ar = fastrest.limit(eps, nu, extrapolate=True).v1_star
     with pytest.raises(ValueError, match=r"JCG unloading \(eq 35\)"):
-        direct.e_star(lim_ar, eps, nu, extrapolate=True)
+        direct.e_exact(lim_ar, eps, nu, extrapolate=True)
     with pytest.raises(ValueError, match=r"^v_max = .*JCG unloading"):
         fastrest.curve(eps, nu, v_max=lim_ar, extrapolate=True)
     with pytest.warns(fastrest.ExtrapolationWarning):
-        assert 0.0 < direct.e_star(lim_ar, eps, nu, "etsion", extrapolate=True) < 1.0
+        assert 0.0 < direct.e_exact(lim_ar, eps, nu, "etsion", extrapolate=True) < 1.0
         c = fastrest.curve(eps, nu, extrapolate=True)
         # curves stop short of the end, where e falls like a square root (issue 12, item 5)
         assert c.e(c.v_max) > 0.0 and c.omega_m(c.v_max) == pytest.approx(0.6 * JCG_OMEGA_END, rel=1e-9)
@@ -314,18 +314,19 @@ def test_impact_jcg_end_in_metres_per_second():
 
 
 def test_limits_validate_the_material():
-    """v1_star_limit / omega_limit are public (fastrest.direct.v1_star_limit): a bad material is a
-    named error, not a plausible limit (v1_star_limit(-1, 0.33) used to return 0.0923)."""
-    from fastrest.limits import omega_limit, v1_star_limit
-    for f in (omega_limit, v1_star_limit):
-        with pytest.raises(ValueError, match="eps_y"):
-            f(-1.0, 0.33)
-        with pytest.raises(ValueError, match="nu"):
-            f(0.005, 0.5)
-        with pytest.raises(TypeError, match="eps_y"):
-            f("a", 0.33)
-        with pytest.raises(TypeError):
-            f(0.005, 0.33, True)  # options are keyword-only
+    """fastrest.limit is public: a bad material is a named error, not a plausible limit (the speed
+    limit of eps_y = -1 once came out as 0.0923)."""
+    f = fastrest.limit
+    with pytest.raises(ValueError, match="eps_y"):
+        f(-1.0, 0.33)
+    with pytest.raises(ValueError, match="nu"):
+        f(0.005, 0.5)
+    with pytest.raises(TypeError, match="eps_y"):
+        f("a", 0.33)
+    with pytest.raises(TypeError):
+        f(0.005, 0.33, None, True)  # extrapolate is keyword-only
+    with pytest.raises(ValueError, match="unloading"):
+        f(0.005, 0.33, "hertz")
 
 
 def test_contact_law_names_its_own_w_max():

@@ -22,7 +22,7 @@ def test_zero_summits_refused_at_construction():
 @pytest.mark.parametrize("flag", ["False", "no", 2.5, math.nan, 1, None])
 def test_flags_take_only_booleans(flag):
     imp = fastrest.Impact(STEEL, 0.01)
-    for call in (lambda: imp.V_max(extrapolate=flag), lambda: fastrest.direct.e_star(5.0, 0.005, 0.3, extrapolate=flag),
+    for call in (lambda: imp.V_max(extrapolate=flag), lambda: fastrest.direct.e_exact(5.0, 0.005, 0.3, extrapolate=flag),
                  lambda: fastrest.curve(0.005, 0.3, extrapolate=flag), lambda: models.weir_tallon(1, 1e9, 2e11, 7800, cap=flag)):
         with pytest.raises(TypeError, match="extrapolate|cap"):
             call()
@@ -38,7 +38,7 @@ def test_flags_take_only_booleans(flag):
     (lambda s: fastrest.scene([(0.005, 0.33)], v_max=bytearray(b"1")), "v_max"),
     (lambda s: fastrest.scene([(0.005, 0.33), (0.004, 0.3)], v_max=[10.0, True]), "v_max"),
     (lambda s: rough.GreenwoodWilliamson(eta=np.array([1e10, 1e10]), sigma=1e-6), "eta"),
-    (lambda s: fastrest.direct.e_star(np.ma.masked_array([5.0, 6.0], [0, 1]), 0.005, 0.3), "masked"),
+    (lambda s: fastrest.direct.e_exact(np.ma.masked_array([5.0, 6.0], [0, 1]), 0.005, 0.3), "masked"),
 ])
 def test_non_numbers_raise_type_error(call, word):
     s = rough.RoughSurface(STEEL, 1e-4, heights=[0.0, 1e-8])
@@ -65,14 +65,14 @@ def test_no_infinite_model_values_and_strict_json(capsys):
 
 
 def test_named_errors_for_extreme_values():
-    for call, word in ((lambda: fastrest.direct.e_star(10**400, 0.005, 0.3), "v1_star"),
+    for call, word in ((lambda: fastrest.direct.e_exact(10**400, 0.005, 0.3), "v1_star"),
                        (lambda: fastrest.Impact(STEEL, 1e300), "R"), (lambda: fastrest.Impact(STEEL, 1e-300), "R"),
                        (lambda: fastrest.Impact(fastrest.Material(1e70, 0.3, 5e67, rho=7800), 0.01), "Sy"),
                        (lambda: fastrest.Impact("steel", 0.01), "sphere"),
                        (lambda: fastrest.tables.normalise_grid(dict(eps_y_max=math.inf)), "eps_y_max"),
                        (lambda: fastrest.tables.normalise_grid(dict(n_eps_y=1e300)), "n_eps_y"),
                        (lambda: fastrest.tables.normalise_grid(dict(eps_y_blocks=[[128.0, 10**9]])), "eps_y_blocks"),
-                       (lambda: fastrest.direct.e_star([1.0, 2.0], [0.005, 0.004, 0.003], 0.3), "v1_star.*eps_y")):
+                       (lambda: fastrest.direct.e_exact([1.0, 2.0], [0.005, 0.004, 0.003], 0.3), "v1_star.*eps_y")):
         with pytest.raises((TypeError, ValueError), match=word):
             call()
 
@@ -137,7 +137,7 @@ def test_jit_functions_take_float32_and_integer_inputs():
 
     @nb.njit
     def f_scene(sd, k, v):
-        return frj.e_scene(sd, k, v)
+        return frj.e_material(sd, v, k)
 
     @nb.njit
     def f_table(td, v):

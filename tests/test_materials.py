@@ -271,3 +271,69 @@ def test_poisson_factor_bad_nu(nu):
         fastrest.poisson_factor(nu)
     with pytest.raises(ValueError, match=_name("nu")):
         fastrest.critical_velocity_ratios(nu)
+
+
+# --------------------------------------------------------------------------------------------
+# Issue 21 item 7: unit mistakes are named, and the validity warning comes when the Impact is built.
+
+@pytest.mark.parametrize("args, kwargs, names", [
+    ((200.0, 0.33, 1.12e9), {}, ["E = 200.0 Pa is below 1e+06 Pa"]),            # E in GPa
+    ((200e9, 0.33, 1120.0), {}, ["Sy = 1120.0 Pa is below 100000 Pa"]),          # Sy in MPa
+    ((200.0, 0.33, 1120.0), {}, ["E = 200.0 Pa", "Sy = 1120.0 Pa"]),             # both
+    ((200e9, 0.33, 1.12e9), {"rho": 7.85}, ["rho = 7.85 kg/m^3 is below 30"]),   # rho in g/cm^3
+    ((1e9, 0.33, 5e8), {}, ["Sy/E = 0.5 is above 0.1"]),
+    ((200e9, 0.33, 1e5), {}, ["Sy/E = 5e-07 is below 1e-05"]),
+])
+def test_implausible_material_warns_with_the_units(args, kwargs, names):
+    with pytest.warns(fastrest.ValidityWarning) as rec:
+        Material(*args, **kwargs)
+    assert len(rec) == 1 and rec[0].filename == __file__  # attributed to the caller's line
+    msg = str(rec[0].message)
+    for n in names:
+        assert n in msg
+    assert "check the units: E and Sy in Pa" in msg and "rho in kg/m^3" in msg
+
+
+def test_plausible_materials_do_not_warn():
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Material(200e9, 0.33, 1.12e9, rho=7850)       # steel
+        Material(3e9, 0.35, 70e6, rho=1180)           # PMMA
+        Material(16e9, 0.44, 5e6, rho=11340)          # lead
+        Material(380e9, 0.22, math.inf, rho=3950)     # alumina that never yields
+        Impact(Material(200e9, 0.33, 1.12e9, rho=7850), 0.01)
+
+
+def test_impact_warns_of_the_validated_range_when_built():
+    """eps_y > 0.01 (a hard steel): the ValidityWarning comes from the constructor (before, only
+    from an evaluation); plausible values get no unit hint."""
+    with pytest.warns(fastrest.ValidityWarning, match=r"Impact: eps_y = Sy/E' = 0\.01782 outside \[0\.0005, 0\.01\]") as rec:
+        imp = Impact(Material(200e9, 0.33, 4e9), 0.01, mass=0.03)
+    assert len(rec) == 1 and rec[0].filename == __file__
+    assert "check the units" not in str(rec[0].message)
+    with pytest.warns(fastrest.ValidityWarning, match=r"nu = 0\.1 outside \[0\.2, 0\.45\]"):
+        Impact.two_spheres(Material(200e9, 0.1, 1e9), 0.01, Material(200e9, 0.1, 1e9), 0.01, 0.03, 0.03)
+    with pytest.warns(fastrest.ValidityWarning):  # the evaluation still warns
+        imp.e(1.0)
+
+
+@pytest.mark.parametrize("E, Sy, hint", [(200.0, 1.12e9, "sphere.E = 200.0 Pa"), (200e9, 1120.0, "sphere.Sy = 1120.0 Pa")])
+def test_unit_mistake_is_named_at_construction_and_in_the_refused_speed(E, Sy, hint):
+    """E in GPa gives eps_y = 5e6 and "a/R = 1 ... V1 = 0.085 m/s" for any speed; Sy in MPa a w_m* = 425
+    speed of 6e-14 m/s: the warning at construction and the error both name the value and the units."""
+    with pytest.warns(fastrest.ValidityWarning) as rec:
+        imp = Impact(Material(E, 0.33, Sy, rho=7850), 0.01)
+    impact_msgs = [str(w.message) for w in rec if str(w.message).startswith("Impact:")]
+    assert len(impact_msgs) == 1 and hint in impact_msgs[0] and "eps_y = Sy/E'" in impact_msgs[0]
+    assert "check the units" in impact_msgs[0]
+    with pytest.raises(ValueError, match="check the units") as exc:
+        imp.e(1.0)
+    assert hint in str(exc.value) and "V in m/s" in str(exc.value)
+
+
+def test_refused_speed_of_a_plausible_impact_reminds_of_m_per_s():
+    imp = Impact(Material(200e9, 0.33, 1.12e9), 0.01, mass=0.0327)
+    with pytest.raises(ValueError, match=r"\(V1 in m/s\)$"):
+        imp.e(1000.0)  # 1 m/s given in mm/s

@@ -85,8 +85,8 @@ def test_scene():
 
 
 def test_direct_and_impact():
-    _no_new_signature(direct.impact_array, lambda v: direct.e_star(v, 0.005, 0.33), V)
-    _no_new_signature(direct.impact_array, lambda n: direct.omega_m_star(5.0, 0.005, n), [0.3, 0.33])
+    _no_new_signature(direct.impact_array, lambda v: direct.e_exact(v, 0.005, 0.33), V)
+    _no_new_signature(direct.impact_array, lambda n: direct.omega_m_exact(5.0, 0.005, n), [0.3, 0.33])
     impact = fastrest.Impact(fastrest.Material(200e9, 0.33, 1.12e9), 0.01, mass=0.0327)
     _no_new_signature(direct.impact_array, impact.e, [0.5, 1.0, 2.0])
 

@@ -5,7 +5,7 @@ References used here:
   solver) for the forward map;
 * rough_reference.reference_impact: per-summit f_star_kernel + restitution_kernel, scipy brentq for
   the approach (no forward tables, no rough kernels);
-* near the onset of yield: fastrest.direct.loss_star (one summit) and rough_reference.onset_reference
+* near the onset of yield: fastrest.direct.loss_exact (one summit) and rough_reference.onset_reference
   (40-digit mpmath, several summits);
 * scipy.integrate.quad + brentq for the Greenwood-Williamson integrals (written out below);
 * a sampled Gaussian surface of 1e6 summits against the statistical model, within a sampling
@@ -64,8 +64,8 @@ def forward_array(data, w):
 
 @pytest.mark.parametrize("eps_y, nu", MATERIALS)
 def test_forward_F_matches_f_star_kernel(eps_y, nu):
-    w_max = min(425.0, fw.forward_limit(eps_y, nu))
-    data = fw.forward_data(eps_y, nu, w_max)
+    w_max = min(425.0, fastrest.limit(eps_y, nu).omega_m_star)
+    data = fw.forward_data(eps_y, nu, w_max=w_max)
     rng = np.random.default_rng(1)
     w = np.concatenate([np.geomspace(1e-6, w_max, 3000), rng.uniform(1.9, w_max, 3000),
                         [0.0, 1.0, 1.9, np.nextafter(1.9, 2.0), w_max]])
@@ -80,7 +80,7 @@ def test_forward_F_matches_f_star_kernel(eps_y, nu):
 
 @pytest.mark.parametrize("eps_y, nu", MATERIALS)
 def test_forward_P_matches_p_star_kernel(eps_y, nu):
-    data = fw.forward_data(eps_y, nu, 400.0)
+    data = fw.forward_data(eps_y, nu, w_max=400.0)
     w = np.concatenate([np.geomspace(1e-6, 400.0, 4000), [1.9, np.nextafter(1.9, 2.0)]])
     out = forward_array(data, w)
     ref = np.array([contact.p_star_kernel(x, eps_y, nu) for x in w])
@@ -95,12 +95,12 @@ def test_forward_P_matches_p_star_kernel(eps_y, nu):
 @pytest.mark.parametrize("eps_y, nu", [(0.005, 0.33), (0.001, 0.25), (0.01, 0.2)])
 def test_forward_returned_energy_is_single_sphere_restitution(eps_y, nu, model):
     """R(w)/F(w) = e^2 and L(w)/F(w) = 1 - e^2 of the single sphere whose w_m* is w."""
-    data = fw.forward_data(eps_y, nu, 300.0, unloading=model)
+    data = fw.forward_data(eps_y, nu, w_max=300.0, unloading=model)
     w = np.concatenate([[0.5, 1.0, 1.0 + 1e-9, 1.5, 1.9, 1.95], np.geomspace(2.0, 300.0, 40)])
     out = forward_array(data, w)
     v1_star = np.sqrt([energy.f_star_kernel(x, eps_y, nu) for x in w])
-    e = direct.e_star(v1_star, eps_y, nu, unloading=model)
-    loss = direct.loss_star(v1_star, eps_y, nu, unloading=model)
+    e = direct.e_exact(v1_star, eps_y, nu, unloading=model)
+    loss = direct.loss_exact(v1_star, eps_y, nu, unloading=model)
     F = out[0]
     np.testing.assert_allclose(out[2] / F, e**2, rtol=1e-12, atol=0)
     np.testing.assert_allclose(out[3] / F, loss, rtol=1e-9, atol=1e-16)  # loss ~1e-10 at 1 + 1e-9
@@ -113,10 +113,10 @@ def test_forward_returned_energy_is_single_sphere_restitution(eps_y, nu, model):
 
 
 def test_forward_nan_outside_domain():
-    data = fw.forward_data(0.005, 0.33, 10.0)
+    data = fw.forward_data(0.005, 0.33, w_max=10.0)
     out = forward_array(data, np.array([-1e-300, -1.0, np.nan, np.nextafter(10.0, 11.0), 11.0, np.inf]))
     assert np.all(np.isnan(out))
-    small = fw.forward_data(0.005, 0.33, 1.5)  # all closed form: 1.5 < w is outside
+    small = fw.forward_data(0.005, 0.33, w_max=1.5)  # all closed form: 1.5 < w is outside
     out = forward_array(small, np.array([1.5, 1.6, 3.0]))
     assert not np.any(np.isnan(out[:, 0]))  # w = w_max = 1.5 is inside
     assert out[0, 0] == 1.5**2.5 or rel(out[0, 0], 1.5**2.5) < 1e-15
@@ -126,8 +126,8 @@ def test_forward_nan_outside_domain():
 
 def test_forward_tables_share_cells():
     """A bigger table holds bit-identical cells: results do not depend on how far one was built."""
-    a = fw.forward_data(0.005, 0.33, 7.3)
-    b = fw.forward_data(0.005, 0.33, 300.0)
+    a = fw.forward_data(0.005, 0.33, w_max=7.3)
+    b = fw.forward_data(0.005, 0.33, w_max=300.0)
     n = a.f_rows.shape[0]
     np.testing.assert_array_equal(a.f_rows, b.f_rows[:n])
     w = np.linspace(1.9, 7.3, 1001)
@@ -136,19 +136,19 @@ def test_forward_tables_share_cells():
 
 def test_forward_data_limits_and_validation():
     with pytest.raises(ValueError, match="425"):
-        fw.forward_data(0.005, 0.33, 500.0)
-    lim = fw.forward_limit(0.005, 0.33, extrapolate=True)
-    d = fw.forward_data(0.005, 0.33, 0.99 * lim, extrapolate=True)
+        fw.forward_data(0.005, 0.33, w_max=500.0)
+    lim = fastrest.limit(0.005, 0.33, extrapolate=True).omega_m_star
+    d = fw.forward_data(0.005, 0.33, w_max=0.99 * lim, extrapolate=True)
     assert np.isfinite(forward_array(d, np.array([0.98 * lim]))).all()
     with pytest.raises(ValueError, match="a/R"):
-        fw.forward_data(0.005, 0.33, 1.01 * lim, extrapolate=True)
+        fw.forward_data(0.005, 0.33, w_max=1.01 * lim, extrapolate=True)
     for bad in (-1.0, np.nan, np.inf):
         with pytest.raises(ValueError, match="w_max"):
-            fw.forward_data(0.005, 0.33, bad)
+            fw.forward_data(0.005, 0.33, w_max=bad)
     with pytest.raises(ValueError, match="eps_y"):
-        fw.forward_data(-0.005, 0.33, 5.0)
+        fw.forward_data(-0.005, 0.33, w_max=5.0)
     with pytest.raises(ValueError, match="unloading"):
-        fw.forward_data(0.005, 0.33, 5.0, unloading="hertz")
+        fw.forward_data(0.005, 0.33, w_max=5.0, unloading="hertz")
 
 
 # =================================================================================================
@@ -170,13 +170,13 @@ def test_single_summit_is_the_single_sphere(model):
     s, r, Vc = single(v, model=model)
     v1_star = r.V1_star
     np.testing.assert_allclose(v1_star, v, rtol=1e-15)
-    e = direct.e_star(v1_star, s.eps_y, s.nu, unloading=model)
-    wm = direct.omega_m_star(v1_star, s.eps_y, s.nu)
+    e = direct.e_exact(v1_star, s.eps_y, s.nu, unloading=model)
+    wm = direct.omega_m_exact(v1_star, s.eps_y, s.nu)
     assert np.max(np.abs(r.e - e)) <= 1e-12
     np.testing.assert_allclose(r.w_star_max, wm, rtol=1e-12)
     np.testing.assert_allclose(r.d_min, -wm * s.omega_c, rtol=1e-12)  # one summit: it is the mean plane
     np.testing.assert_allclose(r.force_max, s.P_c * contact.P_star(wm, s.eps_y, s.nu), rtol=1e-12)
-    np.testing.assert_allclose(r.loss, direct.loss_star(v1_star, s.eps_y, s.nu, unloading=model),
+    np.testing.assert_allclose(r.loss, direct.loss_exact(v1_star, s.eps_y, s.nu, unloading=model),
                                rtol=1e-9, atol=1e-15)
     assert np.all(r.n_contact == 1)
     np.testing.assert_array_equal(r.n_yielded, (wm > 1.0).astype(int))
@@ -191,7 +191,7 @@ def test_single_summit_keeps_relative_accuracy_at_the_onset_of_yield(model):
     """Issue 12 item 6: one summit just past V1* = 1 gives 1 - e^2 as the single-sphere solver.
 
     M = U_c/2 makes V_c = sqrt(2 U_c/M) = 2 m/s exactly, so V1 = 2 V1* carries V1* = 1 + x
-    exactly, where direct.loss_star is exact (it agrees with the 40-digit tests/reference.py). The
+    exactly, where direct.loss_exact is exact (it agrees with the 40-digit tests/reference.py). The
     solver used to form w* - 1 from w*: 1.1e-4 relative at x = 1e-12, 1.1e-7 at 1e-9, 1.4e-10 at
     1e-6 (max over the 31 speeds); now 8.9e-16, 7.8e-16, 7.8e-16 (``python -m bench.rough_onset``).
     """
@@ -201,7 +201,7 @@ def test_single_summit_keeps_relative_accuracy_at_the_onset_of_yield(model):
     for x in ONSET:
         v = 1.0 + x + np.arange(-15, 16) * 2.0**-52
         r = s.impact(2.0 * v, M, unloading=model)
-        ref = direct.loss_star(v, s.eps_y, s.nu, unloading=model)
+        ref = direct.loss_exact(v, s.eps_y, s.nu, unloading=model)
         assert np.all(r.n_yielded == 1)
         if model == "jcg":
             assert np.max(np.abs(r.loss / ref - 1)) <= 1e-12, x
@@ -516,7 +516,7 @@ def test_bad_input_is_rejected_clearly():
 def test_beyond_the_model_range():
     s = rough.RoughSurface(STEEL, R_A, heights=[0.0])
     M = 1e-6
-    v_lim = direct.v1_star_limit(s.eps_y, s.nu) * math.sqrt(2 * s.U_c / M)
+    v_lim = fastrest.limit(s.eps_y, s.nu).v1_star * math.sqrt(2 * s.U_c / M)
     with pytest.raises(ValueError, match="425"):
         s.impact(1.01 * v_lim, M)
     with pytest.warns(ExtrapolationWarning):
@@ -551,6 +551,31 @@ def test_sweep_local():
         rough.sweep(specs, V, [1.0, 2.0])
 
 
+def test_sweep_reports_a_failed_surface_and_goes_on():
+    """Issue 21: one refused surface (a bad parameter, a speed past the model's range for its
+    summits) aborted the whole sweep; now its entry is NaN, kind "failed", and ``errors`` names it;
+    on_error="raise" raises as before."""
+    V = np.array([0.01, 0.1])
+    good = {"material": STEEL, "R_a": R_A, "gw": {"eta": 1e10, "sigma": IP.omega_c, "A_n": 1e-7}}
+    specs = [good, dict(good, R_a=-1.0), {"material": STEEL, "R_a": R_A, "heights": [0.0]}, good]
+    masses = [1e-3, 1e-3, 10.0, 1e-3]  # the single summit cannot absorb 10 kg at 0.1 m/s
+    out = rough.sweep(specs, V, masses)
+    assert len(out) == 4 and out.ok.tolist() == [True, False, False, True]
+    assert [i for i, _ in out.errors] == [1, 2]
+    assert isinstance(out.errors[0][1], ValueError) and "R_a" in str(out.errors[0][1])
+    assert "425" in str(out.errors[1][1])
+    np.testing.assert_array_equal(out[3].e, out[0].e)
+    np.testing.assert_array_equal(out[0].e, rough.sweep([good], V, 1e-3)[0].e)
+    for r in (out[1], out[2]):
+        assert r.kind == "failed" and np.isnan(r.e).all() and np.isnan(r.loss).all() and r.e.shape == V.shape
+    assert out[2].M == 10.0 and np.array_equal(out[2].energy_in, 0.5 * 10.0 * V**2)
+    assert rough.sweep([good], V, 1e-3).errors == []
+    with pytest.raises(ValueError, match="R_a"):
+        rough.sweep(specs, V, masses, on_error="raise")
+    with pytest.raises(ValueError, match="on_error"):
+        rough.sweep(specs, V, masses, on_error="ignore")
+
+
 @pytest.mark.slow
 def test_sweep_on_dask_matches_local():
     """A LocalCluster of 2 process workers (about 6 s) gives bit-identical results."""
@@ -559,12 +584,17 @@ def test_sweep_on_dask_matches_local():
     specs = [rough.RoughSurface(STEEL, R_A, heights=z),
              {"material": STEEL, "R_a": R_A, "heights": z},  # same array: scattered once
              {"E": 70e9, "nu": 0.33, "Sy": 3e8, "R_a": 5e-5, "gaussian": (50_000, 1e-7, 7)},
-             {"material": STEEL, "R_a": R_A, "gw": {"eta": 1e10, "sigma": 2 * IP.omega_c, "A_n": 1e-4}}]
+             {"material": STEEL, "R_a": R_A, "gw": {"eta": 1e10, "sigma": 2 * IP.omega_c, "A_n": 1e-4}},
+             {"material": STEEL, "R_a": -1.0, "heights": [0.0]}]  # fails: reported, the others go on
     V = np.geomspace(0.01, 1.0, 6)
     local = rough.sweep(specs, V, 1e-2)
+    assert [i for i, _ in local.errors] == [4]
     with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         remote = rough.sweep(specs, V, 1e-2, client=client)
+        again = rough.sweep(specs, V, 1e-2, client=client)  # the same V scattered again: no lost key
+    assert [(i, str(e)) for i, e in remote.errors] == [(i, str(e)) for i, e in local.errors]
+    assert [(i, str(e)) for i, e in again.errors] == [(i, str(e)) for i, e in local.errors]
     assert len(remote) == len(local)
     for a, b in zip(local, remote):
         for key, val in a.as_dict().items():
@@ -574,7 +604,7 @@ def test_sweep_on_dask_matches_local():
 def test_extrapolated_table_does_not_leak_into_later_calls():
     s = rough.RoughSurface(STEEL, R_A, heights=[0.0])
     M = 1e-6
-    v = 1.01 * direct.v1_star_limit(s.eps_y, s.nu) * math.sqrt(2 * s.U_c / M)
+    v = 1.01 * fastrest.limit(s.eps_y, s.nu).v1_star * math.sqrt(2 * s.U_c / M)
     with pytest.warns(ExtrapolationWarning):
         s.impact(v, M, extrapolate=True)
     assert s.forward().w_max > 425

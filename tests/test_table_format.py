@@ -173,7 +173,7 @@ def _points(n, seed):
     rng = np.random.default_rng(seed)
     e = rng.uniform(0.0005, 0.01, n)
     nu = rng.uniform(0.2, 0.45, n)
-    lim = np.array([fastrest.limits.v1_star_limit(a, b) for a, b in zip(e, nu)])
+    lim = np.array([fastrest.limit(a, b).v1_star for a, b in zip(e, nu)])
     v = np.exp(rng.uniform(np.log(0.05), np.log(lim * (1 - 1e-6))))
     t = fastrest.load_table()
     edges = t.cell_edges
@@ -210,7 +210,7 @@ def test_doc_evaluator_refuses_where_fastrest_does(doc):
     data = fastrest.load_table().data
     rng = np.random.default_rng(5)
     for e, nu in zip(rng.uniform(0.0005, 0.01, 40), rng.uniform(0.2, 0.45, 40)):
-        lim = fastrest.limits.v1_star_limit(e, nu)
+        lim = fastrest.limit(e, nu).v1_star
         for v in lim * np.array([1 - 1e-9, 1 + 1e-7, 1.001, 1.05]):
             ref = e_table(data, v, e, nu, 0)
             got = doc.value(1, v, e, nu)
@@ -221,6 +221,6 @@ def test_doc_evaluator_refuses_where_fastrest_does(doc):
             else:
                 assert abs(got - ref) <= 1e-14 * ref
     e, nu = 0.004, 0.3
-    lim = fastrest.limits.v1_star_limit(e, nu)
+    lim = fastrest.limit(e, nu).v1_star
     assert math.isnan(doc.value(1, lim * 1.001, e, nu))
     assert math.isnan(doc.value(1, 2.0, 0.02, 0.3))  # outside the table's eps_y

@@ -101,7 +101,7 @@ def multi_material_points(n, seed):
     rng = np.random.default_rng(seed)
     e = rng.uniform(*EPS_RANGE, n)
     nu = rng.uniform(*NU_RANGE, n)
-    vmax = np.array([direct.v1_star_limit(a, b) for a, b in zip(e, nu)])
+    vmax = np.array([fastrest.limit(a, b).v1_star for a, b in zip(e, nu)])
     u = rng.uniform(0.0, 1.0, n)
     v = np.where(np.arange(n) % 2 == 0, np.exp(u * np.log(vmax)), u * vmax)
     hard = [1.0, 1 + 1e-12, 1 + 1e-9, V_SWITCH, math.nextafter(V_SWITCH, 0.0),
@@ -158,7 +158,7 @@ def test_default_table_edges_and_corners_match_direct():
     pts = []
     for eps in (0.0005, math.nextafter(0.0005, 1.0), 0.005, math.nextafter(0.01, 0.0), 0.01):
         for nu in (0.2, 0.25, 0.33, 0.45):
-            lim = direct.v1_star_limit(eps, nu)
+            lim = fastrest.limit(eps, nu).v1_star
             for v in np.concatenate([np.geomspace(1.0, lim, 40), [lim * (1 - 1e-12), lim]]):
                 pts.append((v, eps, nu))
     v, e, n = map(np.array, zip(*pts))
@@ -218,7 +218,7 @@ def test_large_batch_parallel_path_matches_serial():
     ref = reference(v[sub], e[sub], nu[sub])
     assert rel_errors(fastrest.e_star(v, e, nu)[sub], ref["e_jcg"]).max() <= TOL_TABLE["e_jcg"]
     v_bad = v.copy()
-    v_bad[-7] = direct.v1_star_limit(e[-7], nu[-7]) * 1.01
+    v_bad[-7] = fastrest.limit(e[-7], nu[-7]).v1_star * 1.01
     with pytest.raises(ValueError, match="425"):
         fastrest.e_star(v_bad, e, nu)
     e_bad = e.copy()
@@ -271,7 +271,7 @@ def test_invalid_input_raises_naming_parameter(args, name):
 
 @pytest.mark.parametrize("eps, nu", [(0.005, 0.3), (0.0005, 0.2), (0.01, 0.45)])
 def test_past_425_raises(eps, nu):
-    lim = direct.v1_star_limit(eps, nu)
+    lim = fastrest.limit(eps, nu).v1_star
     for f in (fastrest.omega_m_star, fastrest.e_star, fastrest.loss_star):
         with pytest.raises(ValueError, match="425"):
             f(lim * (1 + 1e-6), eps, nu)
@@ -281,7 +281,7 @@ def test_past_425_raises(eps, nu):
             f(1e4, eps, nu)
     # just inside the limit it works and is accurate
     v = lim * (1 - 1e-7)
-    assert fastrest.e_star(v, eps, nu) == pytest.approx(direct.e_star(v, eps, nu), rel=1e-8, abs=0)
+    assert fastrest.e_star(v, eps, nu) == pytest.approx(direct.e_exact(v, eps, nu), rel=1e-8, abs=0)
     assert fastrest.omega_m_star(v, eps, nu) <= 425.0
 
 
@@ -436,7 +436,7 @@ def test_small_table_is_a_table_of_the_model(small):
     """A coarse table is less accurate but must still be the model, and keep its own range."""
     _, t = small
     v = np.array([1.5, 2.5, 10.0, 100.0, 500.0])
-    ref = direct.e_star(v, 0.005, 0.3)
+    ref = direct.e_exact(v, 0.005, 0.3)
     np.testing.assert_allclose(t.e_star(v, 0.005, 0.3), ref, rtol=1e-3)
     with pytest.raises(ValueError, match=r"eps_y.*\[0\.002, 0\.008\]"):
         t.e_star(5.0, 0.001, 0.3)
@@ -753,10 +753,8 @@ def test_bad_eps_y_blocks_rejected():
 
 
 def test_old_public_names_still_work():
-    """Names users may import from before fastrest.tables became a package."""
-    import fastrest.table_error as te
-
-    assert te.AccuracyWarning is tables.AccuracyWarning and te.measure is tables.error.measure
+    """Names users may import from before fastrest.tables became a package (fastrest.table_error:
+    deprecated, tests/test_deprecations.py)."""
     assert tables.table_value is tables.table_value_kernel
     assert fastrest.TableFileError is tables.TableFileError
     assert tables.TableData.__module__ == "fastrest.tables"

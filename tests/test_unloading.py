@@ -38,13 +38,13 @@ def test_unknown_model_is_the_same_value_error_everywhere(bad):
     steel = fastrest.Material(200e9, 0.33, 1.12e9, 7800)
     imp = fastrest.Impact(steel, 0.01)
     calls = [
-        lambda: direct.e_star(3.0, 0.005, 0.33, bad),
-        lambda: direct.loss_star(3.0, 0.005, 0.33, bad),
+        lambda: direct.e_exact(3.0, 0.005, 0.33, bad),
+        lambda: direct.loss_exact(3.0, 0.005, 0.33, bad),
         lambda: fastrest.curve(0.005, 0.33, bad),
         lambda: fastrest.scene([(0.005, 0.33)], bad),
         lambda: fastrest.e_star(3.0, 0.005, 0.33, bad),
         lambda: fastrest.loss_star(3.0, 0.005, 0.33, bad),
-        lambda: forward.forward_data(0.005, 0.33, 10.0, bad),
+        lambda: forward.forward_data(0.005, 0.33, bad, w_max=10.0),
         lambda: fastrest.contact_law(0.005, 0.33, bad),
         lambda: imp.e(1.0, unloading=bad),
         lambda: imp.V_max(unloading="none" if bad is None else bad),  # None: the loading law's own limit
@@ -78,7 +78,7 @@ def test_jit_table_and_forward_nan_for_unknown_code():
     for code in (-1, held, 7):
         assert math.isnan(frj.e_table(tab, 3.0, 0.005, 0.33, code))
         assert math.isnan(frj.loss_table(tab, 3.0, 0.005, 0.33, code))
-    fd = forward.forward_data(0.005, 0.33, 10.0, "jcg")._replace(model=5)
+    fd = forward.forward_data(0.005, 0.33, "jcg", w_max=10.0)._replace(model=5)
     assert all(math.isnan(x) for x in forward.forward_values(fd, 3.0))
     assert all(math.isnan(x) for x in forward.forward_values(fd, 0.5))
 
@@ -111,7 +111,7 @@ def test_brake_direct_matches_40_digit_reference(v, eps, nu):
 
 def test_brake_returns_more_energy_than_etsion_and_less_than_elastic():
     v = np.geomspace(2.5, 300.0, 30)
-    eb, ee = direct.e_star(v, 0.005, 0.33, "brake"), direct.e_star(v, 0.005, 0.33, "etsion")
+    eb, ee = direct.e_exact(v, 0.005, 0.33, "brake"), direct.e_exact(v, 0.005, 0.33, "etsion")
     assert np.all(eb > ee) and np.all(eb < 1.0)
 
 
@@ -127,7 +127,7 @@ def test_brake_and_every_model_in_curves_scenes_tables_forward_and_rough(unloadi
     np.testing.assert_allclose(fastrest.e_star(v, eps, nu, unloading_name), ref, rtol=1e-9)
     # forward map: the returned energy of one summit at its w_m is e^2 V1*^2
     w = np.array([ref_omega_m_star(x, eps, nu) for x in v])
-    fd = forward.forward_data(eps, nu, float(w.max()) * 1.01, unloading_name)
+    fd = forward.forward_data(eps, nu, unloading_name, w_max=float(w.max()) * 1.01)
     ret = np.array([forward.returned_forward(fd, x) for x in w])
     np.testing.assert_allclose(ret, ref**2 * v**2, rtol=1e-12)
     # a rough surface of one summit is the single sphere

@@ -1,16 +1,18 @@
 """A loading / unloading / reloading loop of the time-domain contact law (docs/model.md section 10).
 
-Run from the repository root::
+Run from any directory::
 
-    python docs/examples/contact_law_loop.py [out.png]
+    python docs/examples/contact_law_loop.py [--out OUT.png]
 
 One contact (eps_y = 0.005, nu = 0.33) is pushed along the interference path
 0 -> 20 -> 8 -> 30 -> 0 (w* = omega/omega_c) for the three unloading models: virgin loading
 follows the Jackson-Green law, every return below the largest interference so far follows the
 elastic eq-(32) branch of that maximum, reloading retraces it and rejoins the JG law at the old
 maximum, and the force is zero below the residual interference w_res*. Writes a PNG (default:
-docs/figures/contact_law_loop.png) and prints each model's w_res* after the loop.
+contact_law_loop.png in the current directory; docs/model.md's figure is
+``--out docs/figures/contact_law_loop.png``) and prints each model's w_res* after the loop.
 """
+import argparse
 import sys
 from pathlib import Path
 
@@ -30,8 +32,17 @@ def path(n=400):
     return np.concatenate([np.linspace(a, b, n) for a, b in LEGS])
 
 
+def out_path(argv):
+    """The PNG to write: ``--out`` (or a positional path), by default in the current directory."""
+    p = argparse.ArgumentParser(prog="contact_law_loop.py", description=__doc__.split("\n")[0])
+    p.add_argument("path", nargs="?", help=argparse.SUPPRESS)
+    p.add_argument("--out", help="output PNG [default: ./contact_law_loop.png]")
+    a = p.parse_args(argv[1:])
+    return Path(a.out or a.path or Path.cwd() / "contact_law_loop.png")
+
+
 def main(argv):
-    out = Path(argv[1]) if len(argv) > 1 else Path(__file__).resolve().parent.parent / "figures" / "contact_law_loop.png"
+    out = out_path(argv)
     w = path()
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     virgin = np.linspace(0.0, 32.0, 400)

@@ -1,6 +1,6 @@
 """Many spheres of a few materials hit a rigid wall in a time-stepped (DEM-style) loop.
 
-Run from the repository root::
+Run from anywhere (it writes no file)::
 
     python docs/examples/dem_wall.py [n_particles] [steps_per_contact]
 
@@ -10,14 +10,17 @@ code's force loop runs:
 
 * the critical scales (omega_c, P_c, V_c) of each particle-wall contact from the particle's E, nu,
   Sy, radius and mass by :func:`fastrest.jit.critical_scales` (a rigid wall: E, R, m, Sy = inf);
-* at every step the normal force from :func:`fastrest.jit.contact_force` with one history row per
-  contact, and velocity Verlet with one global time step (a fraction of the shortest Hertz contact
-  duration, :func:`fastrest.jit.hertz_contact_time`), as DEM codes do.
+* at every step the normal force from :func:`fastrest.jit.contact_force_stacked` with one history
+  row per contact, and velocity Verlet with one global time step (a fraction of the shortest Hertz
+  contact duration, :func:`fastrest.jit.hertz_contact_time`), as DEM codes do.
 
 The contact law of a material against the rigid wall depends only on eps_y = Sy/E' and nu, so
-there is one law per material (built in Python); the force loop runs over the particles of one
-material at a time. The rebound speed of every
-particle is compared with the energy-balance e of :meth:`fastrest.Curve.e` for the same impact.
+there is one law per material (built in Python). The laws of all materials are stacked into one
+data indexed by material (:func:`fastrest.force_law.stack_laws`), so that one ``prange`` loop runs
+over every particle whatever its material: ``contact_force_stacked(laws, kind[i], state, w)``. (A
+tuple or list of the laws' ``law.data`` cannot be indexed by a run-time material inside a jitted
+loop.) The rebound speed of every particle is compared with the energy-balance e of
+:meth:`fastrest.Curve.e` for the same impact.
 """
 import math
 import sys
@@ -28,6 +31,7 @@ import numpy as np
 
 import fastrest
 from fastrest import jit as frj
+from fastrest.force_law import stack_laws
 
 #: (E Pa, nu, Sy Pa, rho kg/m^3): every eps_y = Sy/E' inside the paper's validated range
 MATERIALS = [fastrest.Material(200e9, 0.30, 1.0e9, 7800),     # steel
@@ -50,11 +54,10 @@ def setup(kind, E, nu, Sy, rho, radius, speed, dt_fraction, omega_c, P_c, mass):
 
 
 @numba.njit(parallel=True)
-def simulate(law, members, omega_c, P_c, mass, speed, dt, out):
-    """Drop the particles ``members`` (all of one material, law ``law``) on the wall at their
-    speeds; out[i] = (rebound speed, e, steps)."""
-    for j in numba.prange(members.size):
-        i = members[j]
+def simulate(laws, kind, omega_c, P_c, mass, speed, dt, out):
+    """Drop every particle on the wall at its speed, particle i of material ``kind[i]`` of the
+    stacked ``laws``; out[i] = (rebound speed, e, steps)."""
+    for i in numba.prange(kind.size):
         state = np.zeros(frj.STATE_SIZE)
         x = 0.0                # interference omega (m): the sphere touches the wall at x = 0
         v = speed[i]           # d omega / dt (m/s), towards the wall
@@ -63,7 +66,7 @@ def simulate(law, members, omega_c, P_c, mass, speed, dt, out):
         while True:
             steps += 1
             x += v * dt + 0.5 * a * dt * dt
-            f = P_c[i] * frj.contact_force(law, state, x / omega_c[i])
+            f = P_c[i] * frj.contact_force_stacked(laws, kind[i], state, x / omega_c[i])
             a_new = -f / mass[i]
             v += 0.5 * (a + a_new) * dt
             a = a_new
@@ -87,15 +90,14 @@ def run(n_particles=300, steps_per_contact=4000, seed=1, unloading="jcg"):
     # speeds from just above yield to well into the plastic range (V1* = 1.05 .. 100)
     v1_star = np.exp(rng.uniform(math.log(1.05), math.log(100.0), n_particles))
     speed = np.array([v * imp.V_c for v, imp in zip(v1_star, impacts)])
-    laws = [fastrest.Impact(m, 1e-3).contact_law(unloading).data for m in MATERIALS]
+    # one law per material (normalised: the radius enters through omega_c and P_c), stacked
+    laws = stack_laws([fastrest.Impact(m, 1e-3).contact_law(unloading) for m in MATERIALS])
     out = np.empty((n_particles, 3))
     omega_c, P_c, mass = np.empty(n_particles), np.empty(n_particles), np.empty(n_particles)
     dt = setup(kind, E, nu, Sy, rho, radius, speed, 1.0 / steps_per_contact, omega_c, P_c, mass)
-    groups = [np.flatnonzero(kind == k) for k in range(len(MATERIALS))]
-    simulate(laws[0], groups[0][:1], omega_c, P_c, mass, speed, dt, out)  # compile
+    simulate(laws, kind[:1], omega_c, P_c, mass, speed, dt, out)  # compile
     t0 = time.perf_counter()
-    for law, members in zip(laws, groups):
-        simulate(law, members, omega_c, P_c, mass, speed, dt, out)
+    simulate(laws, kind, omega_c, P_c, mass, speed, dt, out)
     seconds = time.perf_counter() - t0
     curves = [fastrest.curve(fastrest.Impact(m, 1e-3).eps_y, m.nu, unloading, v_max=100.0) for m in MATERIALS]
     e_curve = np.array([curves[k].e(float(s / imp.V_c)) for k, s, imp in zip(kind, speed, impacts)])

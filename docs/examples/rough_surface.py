@@ -1,8 +1,8 @@
 """Coefficient of restitution of a rough surface struck by a rigid flat, for several plasticity indices.
 
-Run from the repository root::
+Run from any directory::
 
-    python docs/examples/rough_surface.py [out.png]
+    python docs/examples/rough_surface.py [--out OUT.png]
 
 A 10 g rigid flat hits 1 cm^2 of a steel surface (E = 200 GPa, nu = 0.3, Sy = 1 GPa) carrying
 1e10 summits/m^2 of radius 100 um with Gaussian heights (Greenwood-Williamson model). The summit
@@ -10,9 +10,9 @@ height standard deviation sigma is set from the plasticity index psi = sqrt(sigm
 (docs/rough.md, section 5). For psi = 2 an explicit surface of 1e6 sampled summits is shown too
 (markers): it follows the statistical model within its sampling error.
 
-Writes a PNG (default: rough_surface.png next to this script) and prints a table.
+Writes a PNG (default: rough_surface.png in the current directory) and prints a table.
 """
-import sys
+import argparse
 from pathlib import Path
 
 import matplotlib
@@ -33,8 +33,13 @@ PSI = (0.5, 1.0, 2.0, 4.0)
 V1 = np.geomspace(1e-3, 10.0, 60)  # impact speeds (m/s)
 
 
+def out_path(out=None):
+    """The PNG to write: ``out``, by default rough_surface.png in the current directory."""
+    return Path(out) if out else Path.cwd() / "rough_surface.png"
+
+
 def main(out=None):
-    out = Path(out) if out else Path(__file__).with_suffix(".png")
+    out = out_path(out)
     omega_c = fastrest.Impact(STEEL, R_A, mass=M).omega_c
     fig, (ax_e, ax_n) = plt.subplots(1, 2, figsize=(10, 4.2), constrained_layout=True)
     print(f"omega_c = {omega_c:.4g} m;  e_s at V1 = {V1[0]:g} ... {V1[-1]:g} m/s")
@@ -69,4 +74,8 @@ def main(out=None):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else None)
+    parser = argparse.ArgumentParser(prog="rough_surface.py", description=__doc__.split("\n")[0])
+    parser.add_argument("path", nargs="?", help=argparse.SUPPRESS)
+    parser.add_argument("--out", help="output PNG [default: ./rough_surface.png]")
+    args = parser.parse_args()
+    main(args.out or args.path)

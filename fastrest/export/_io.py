@@ -5,19 +5,10 @@ Every exporter checks its targets before it computes anything and writes through
 the targets' directory, renamed over them (:func:`os.replace`), so a failure leaves no partial file
 behind, a reader never sees one, and only a regular file or a new path is ever replaced.
 """
-from .._version import __version__
+from .._provenance import REFERENCE, provenance  # noqa: F401 (the exporters import them from here)
 from ..tables.file import check_target, replace_files
 
 __all__ = ["check_target", "provenance", "write_files"]
-
-REFERENCE = ("Jackson R.L., Green I., Marghitu D.B. (2010) Nonlinear Dyn. 60:217-229, "
-             "doi:10.1007/s11071-009-9591-z")
-
-
-def provenance():
-    """What every exported file records about its origin."""
-    return {"fastrest_version": __version__, "references": REFERENCE,
-            "source": "fastrest, Python package: the JGM model by its direct solver (fastrest.direct)"}
 
 
 def write_files(contents, name="path", what="the output file"):

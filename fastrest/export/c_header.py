@@ -8,6 +8,10 @@ hexadecimal float literals (exact), and inline evaluators that follow
 outside ``fma`` are that subtraction and product, u*u, (u*u)*(u*u), (V1* - 1) * r and pow(V1*, 0.8):
 none can be contracted into an fma by a compiler, so the C results equal the Python path's
 bit for bit (tests/test_export_c.py compares 1e5+ points, cell boundaries included).
+
+Built from material pairs in SI units (:func:`impact_materials`: the options and ``--pairs`` file of
+``fastrest export velocity``), the header also holds each pair's critical values (V_c, omega_c,
+P_c, A_c, U_c, E', R', mass) and ``fastrest_v1_star(k, V)``, V (m/s) -> V1* = V/V_c.
 """
 import math
 import os
@@ -19,15 +23,21 @@ from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
 from ..curve import curve
 from ..curve_data import build_curve_data
 from ..energy import V_SWITCH
+from ..impact import Impact
 from ..interpolation import ROW
-from ..limits import v1_star_limit
+from ..limits import limit
 from .. import unloading as _unloading
 from ._io import check_target, provenance, write_files
 
-__all__ = ["MAX_MATERIALS", "parse_materials", "scene_curves", "header_text", "write_header"]
+__all__ = ["MAX_MATERIALS", "CRITICAL_KEYS", "parse_materials", "impact_materials", "scene_curves", "header_text",
+           "write_header"]
 
 #: Most materials in one header (each adds ~420 kB of rows and a curve build).
 MAX_MATERIALS = 256
+#: Critical values of a pair written into a header built from physical properties (SI units), as
+#: ``fastrest_<key>[k]``: keys of :meth:`fastrest.Impact.critical_values`.
+CRITICAL_KEYS = {"V_c": "m/s", "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": "J", "E_eff": "Pa",
+                 "R_eff": "m", "mass": "kg", "Sy": "Pa", "C": "-"}
 
 
 def parse_materials(items, option="materials"):
@@ -64,17 +74,25 @@ def _check_materials(materials):
 def scene_curves(materials, v_max=None, option="v_max"):
     """Curve data per (material, unloading model): list over materials of lists over model codes.
 
-    Each material's curve reaches ``v_max`` (a V1*), by default its own w_m* = 425 speed;
-    ``materials`` holds 1 to :data:`MAX_MATERIALS` (eps_y, nu) pairs.
+    Each material's curve reaches ``v_max`` (a V1*; or a list of one V1* or None per material), by
+    default its own w_m* = 425 speed; ``materials`` holds 1 to :data:`MAX_MATERIALS` (eps_y, nu)
+    pairs.
     """
     _check_materials(materials)
-    if v_max is not None:
-        v_max = real_scalar(v_max, option)
-        if not (v_max > 0 and math.isfinite(v_max)):
-            raise ValueError(f"{option} must be a finite V1* > 0; got {v_max!r}")
+    if isinstance(v_max, (list, tuple)):
+        if len(v_max) != len(materials):
+            raise ValueError(f"{option} holds {len(v_max)} values for {len(materials)} materials")
+        tops = list(v_max)
+    else:
+        tops = [v_max] * len(materials)
+    for i, top in enumerate(tops):
+        if top is not None:
+            tops[i] = top = real_scalar(top, option)
+            if not (top > 0 and math.isfinite(top)):
+                raise ValueError(f"{option} must be a finite V1* > 0; got {top!r}")
     out = []
-    for k, (e, n) in enumerate(materials):
-        lim = v1_star_limit(e, n)
+    for k, ((e, n), v_max) in enumerate(zip(materials, tops)):
+        lim = limit(e, n).v1_star
         if v_max is not None and v_max > lim:
             raise ValueError(f"{option} = {v_max!r} is past material {k}'s (eps_y = {e!r}, nu = {n!r}) limit "
                              f"w_m* = 425 at V1* = {lim:.10g}")
@@ -82,6 +100,59 @@ def scene_curves(materials, v_max=None, option="v_max"):
         first = curve(e, n, _unloading.NAMES[0], v_max=v_max)
         out.append([first.data] + [build_curve_data(e, n, name, v_max=first.v_max) for name in _unloading.NAMES[1:]])
     return out
+
+
+def impact_materials(impacts, V_max=None, names=None):
+    """(materials, v_max, critical) of a header built from :class:`fastrest.Impact` objects.
+
+    Parameters
+    ----------
+    impacts : list of Impact
+        1 to :data:`MAX_MATERIALS` material pairs (effective sphere on a flat, SI units).
+    V_max : float or list of (float or None), optional
+        Largest impact speed (m/s) to tabulate, one for all or one per impact (None: that pair's
+        w_m* = 425 speed, the default).
+    names : list of str, optional
+        The pairs' names, for error messages.
+
+    Returns
+    -------
+    (list of (eps_y, nu), list of (float or None), list of dict)
+        For :func:`write_header`: the normalised materials, their largest V1* (V_max / V_c) and
+        each impact's :meth:`~fastrest.Impact.critical_values`.
+
+    Raises
+    ------
+    ValueError
+        A V_max not finite and > 0, or past the pair's w_m* = 425 speed (the message gives that
+        speed in m/s); a list of the wrong length.
+    """
+    if isinstance(impacts, (str, bytes)) or not hasattr(impacts, "__len__"):
+        raise TypeError(f"impacts must be a list of fastrest.Impact, got {type(impacts).__name__}")
+    if not 1 <= len(impacts) <= MAX_MATERIALS:
+        raise ValueError(f"a header holds 1 to {MAX_MATERIALS} material pairs; got {len(impacts)}")
+    tops = list(V_max) if isinstance(V_max, (list, tuple)) else [V_max] * len(impacts)
+    if len(tops) != len(impacts):
+        raise ValueError(f"V_max holds {len(tops)} values for {len(impacts)} pairs")
+    materials, v_max, critical = [], [], []
+    for k, (imp, top) in enumerate(zip(impacts, tops)):
+        if not isinstance(imp, Impact):
+            raise TypeError(f"impacts[{k}] must be a fastrest.Impact, got {type(imp).__name__}")
+        crit = imp.critical_values()
+        lim = limit(imp.eps_y, imp.nu).v1_star
+        if top is not None:
+            top = real_scalar(top, "V_max")
+            if not (top > 0 and math.isfinite(top)):
+                raise ValueError(f"V_max must be a finite speed > 0 (m/s); got {top!r}")
+            if top / crit["V_c"] > lim * (1 + 1e-12):
+                who = f"pair {names[k]!r}" if names and names[k] else f"pair {k}"
+                raise ValueError(f"V_max = {top!r} m/s is past {who}'s limit w_m* = 425 at "
+                                 f"V = {lim * crit['V_c']:.10g} m/s (V_c = {crit['V_c']:.6g} m/s)")
+            top = min(top / crit["V_c"], lim)
+        materials.append((imp.eps_y, imp.nu))
+        v_max.append(top)
+        critical.append(crit)
+    return materials, v_max, critical
 
 
 def _hex(x):
@@ -161,8 +232,25 @@ static inline double fastrest_loss(int k, double v1_star, int unloading)
 """
 
 
-def header_text(materials, curves, name="fastrest_scene.h", command=None):
-    """The header's text for ``materials`` and their :func:`scene_curves`."""
+_V1_STAR = r"""
+/* V1* = V / V_c (JGM eq 30) of material pair k for a normal impact speed V (m/s): the argument of
+   fastrest_e, fastrest_omega_m and fastrest_loss. NaN for an unknown k. */
+static inline double fastrest_v1_star(int k, double V)
+{
+    if (k < 0 || k >= FASTREST_N_MATERIALS)
+        return NAN;
+    return V / fastrest_V_c[k];
+}
+"""
+
+
+def header_text(materials, curves, name="fastrest_scene.h", command=None, critical=None, names=None):
+    """The header's text for ``materials`` and their :func:`scene_curves`.
+
+    ``critical``: each material pair's :meth:`fastrest.Impact.critical_values` (a header built from
+    physical properties; adds :data:`CRITICAL_KEYS` arrays and ``fastrest_v1_star``); ``names``:
+    each material's name, for the comments.
+    """
     nm = len(_unloading.NAMES)
     shift = curves[0][0].shift
     # one row list per quantity: the Hertz rows (shared), then each material's JG rows
@@ -192,10 +280,16 @@ def header_text(materials, curves, name="fastrest_scene.h", command=None):
              " * Unloading models: " + "; ".join(f"{m.code} = {m.short}: {m.label}" for m in _unloading.MODELS.values()),
              " * Materials (k: eps_y = Sy/E', nu, largest V1* tabulated):"]
     for k, ((e, n), c) in enumerate(zip(materials, curves)):
-        lines.append(f" *   {k}: eps_y = {e!r}, nu = {n!r}, v_max = {c[0].v_max!r}")
+        label = f"{k} ({names[k]})" if names and names[k] else f"{k}"
+        lines.append(f" *   {label}: eps_y = {e!r}, nu = {n!r}, v_max = {c[0].v_max!r}"
+                     + (f" (V up to {c[0].v_max * critical[k]['V_c']:.6g} m/s, V_c = {critical[k]['V_c']:.6g} m/s)"
+                        if critical else ""))
     lines += [" * Evaluate with fastrest_e(k, v1_star, unloading), fastrest_omega_m(k, v1_star),",
-              " * fastrest_loss(k, v1_star, unloading); V1* = V1/V_c (JGM eq 28). NaN outside [0, v_max[k]].",
-              " * C99, needs only libm (link with -lm). */",
+              " * fastrest_loss(k, v1_star, unloading); V1* = V1/V_c (JGM eq 28). NaN outside [0, v_max[k]]."]
+    if critical:
+        lines += [" * Built from physical properties: fastrest_v1_star(k, V) gives V1* of a speed V (m/s), and",
+                  " * fastrest_<name>[k] the pair's critical values (SI units, FASTREST_HAS_CRITICAL 1)."]
+    lines += [" * C99, needs only libm (link with -lm). */",
               f"#ifndef {guard}", f"#define {guard}", "",
               "#include <math.h>", "#include <stdint.h>", "#include <string.h>", "",
               f"#define FASTREST_N_MATERIALS {len(materials)}",
@@ -210,7 +304,21 @@ def header_text(materials, curves, name="fastrest_scene.h", command=None):
               + ", ".join(_hex(c[0].v_max) for c in curves) + "};",
               "/* row of V1* > 1.9^1.25 for material k: (bits of V1*) >> FASTREST_SHIFT minus this */",
               "static const int64_t fastrest_base[FASTREST_N_MATERIALS] = {"
-              + ", ".join(f"INT64_C({b})" for b in base) + "};", "",
+              + ", ".join(f"INT64_C({b})" for b in base) + "};",
+              "/* eps_y = Sy/E' (JGM eq 11) and nu of each material */",
+              "static const double fastrest_eps_y[FASTREST_N_MATERIALS] = {"
+              + ", ".join(_hex(e) for e, _ in materials) + "};",
+              "static const double fastrest_nu[FASTREST_N_MATERIALS] = {"
+              + ", ".join(_hex(n) for _, n in materials) + "};",
+              f"#define FASTREST_HAS_CRITICAL {1 if critical else 0}"]
+    if critical:
+        lines.append("/* critical values of each pair (JGM eqs 4-7, 23, 28; fastrest.Impact.critical_values) */")
+        for key, unit in CRITICAL_KEYS.items():
+            vals = [c[key] for c in critical]
+            lines.append(f"static const double fastrest_{key}[FASTREST_N_MATERIALS] = {{"
+                         + ", ".join(_hex(v) for v in vals) + f"}}; /* {unit}: "
+                         + ", ".join(f"{v:.6g}" for v in vals) + " */")
+    lines += ["",
               f"static const double fastrest_omega_rows[{nrow}][{ROW}] = {{",
               _rows_literal(omega), "};"]
     for field, name in (("e_rows", "e"), ("loss_rows", "loss")):
@@ -221,18 +329,24 @@ def header_text(materials, curves, name="fastrest_scene.h", command=None):
         lines.append(",\n".join(blocks))
         lines.append("};")
     lines.append(_EVAL)
+    if critical:
+        lines.append(_V1_STAR)
     lines.append(f"#endif /* {guard} */")
     return "\n".join(lines) + "\n"
 
 
-def write_header(path, materials, v_max=None, command=None):
+def write_header(path, materials, v_max=None, command=None, *, critical=None, names=None):
     """Build the curves and write the header atomically; returns (path, curves).
 
     ``path`` must be a regular file or a new path in a writable directory (checked first, as are
-    ``materials`` and ``v_max``); a failed write (full disk) raises OSError naming ``path`` and
-    leaves the old file intact.
+    ``materials`` and ``v_max``, a V1* or a list of one per material); a failed write (full disk)
+    raises OSError naming ``path`` and leaves the old file intact. ``critical`` and ``names``: a
+    header from physical properties (:func:`impact_materials`), see :func:`header_text`.
     """
     path = check_target(path, "path", "the header")
+    if critical is not None and len(critical) != len(materials):
+        raise ValueError(f"critical holds {len(critical)} entries for {len(materials)} materials")
     curves = scene_curves(materials, v_max)
-    write_files({path: header_text(materials, curves, os.path.basename(path), command)}, "path", "the header")
+    write_files({path: header_text(materials, curves, os.path.basename(path), command, critical, names)},
+                "path", "the header")
     return path, curves

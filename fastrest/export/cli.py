@@ -8,6 +8,8 @@ import re
 import shlex
 import time
 
+from ..unloading import MODELS
+
 __all__ = ["add_parser", "cli_names"]
 
 _PAIR_OPTIONS = {k: "--" + k.replace("_", "-") for k in
@@ -42,20 +44,60 @@ def cli_names(names, out="--out"):
 
 
 def _cmd_c(args):
-    from . import c_header
+    from . import c_header, velocity
 
-    names = {"v_max": "--v-max", "materials": "--materials", "path": "--out"}
+    names = {"v_max": "--v-max", "V_max": "--V-max", "materials": "--materials", "path": "--out"}
+    physical = args.pairs is not None or any(getattr(args, k) is not None for k in _PAIR_OPTIONS)
+    if physical and args.pairs is None and args.materials is None:
+        names.update(_PAIR_OPTIONS)  # a pair's errors name its options (--E, --nu, ...)
     with cli_names(names):
-        materials = c_header.parse_materials(args.materials)
-        command = ("fastrest export c --materials " + " ".join(shlex.quote(m) for m in args.materials)
-                   + (f" --v-max {args.v_max!r}" if args.v_max is not None else ""))
+        if args.materials is not None and (physical or args.V_max is not None):
+            raise ValueError("give --materials (normalised EPS_Y:NU) or the pairs' physical properties "
+                             "(--E --nu --Sy --R --rho, or --pairs), not both")
+        critical = pair_names = None
+        if args.materials is not None:
+            materials, v_max = c_header.parse_materials(args.materials), args.v_max
+        elif physical:
+            if args.v_max is not None:
+                raise ValueError("--v-max (a V1*) is for --materials; give --V-max (m/s) with physical properties")
+            pairs = _pairs_from_args(args, velocity)
+            if len(pairs) > c_header.MAX_MATERIALS:
+                raise ValueError(f"--pairs: at most {c_header.MAX_MATERIALS} pairs in one header; got {len(pairs)}")
+            impacts, tops = [], []
+            for p in pairs:
+                where = f"pair {p.get('name')!r}: " if p.get("name") else ""
+                impacts.append(velocity.impact_of(p, where))
+                tops.append(p.get("V_max") if p.get("V_max") is not None else args.V_max)
+            pair_names = [p.get("name") for p in pairs]
+            materials, v_max, critical = c_header.impact_materials(impacts, tops, pair_names)
+        else:
+            raise ValueError("give --materials EPS_Y:NU ..., or a pair's --E --nu --Sy --R and --rho or --mass, "
+                             "or --pairs FILE")
         t0 = time.perf_counter()
-        path, curves = c_header.write_header(args.out, materials, args.v_max, command)
+        path, curves = c_header.write_header(args.out, materials, v_max, _command(args), critical=critical,
+                                             names=pair_names)
     print(f"wrote {path} ({len(materials)} materials, {len(curves[0])} unloading models) "
           f"in {time.perf_counter() - t0:.1f} s")
     for k, c in enumerate(curves):
-        print(f"  material {k}: eps_y = {materials[k][0]:g}, nu = {materials[k][1]:g}, V1* up to {c[0].v_max:.6g}")
+        line = f"  material {k}: eps_y = {materials[k][0]:g}, nu = {materials[k][1]:g}, V1* up to {c[0].v_max:.6g}"
+        if critical:
+            line += f" (V up to {c[0].v_max * critical[k]['V_c']:.6g} m/s, V_c = {critical[k]['V_c']:.6g} m/s)"
+        print(line)
     return 0
+
+
+def _command(args):
+    """The command line that reproduces ``args`` of ``export c`` (recorded in the header)."""
+    parts = ["fastrest export c"]
+    if args.materials is not None:
+        parts.append("--materials " + " ".join(shlex.quote(m) for m in args.materials))
+    for key, option in list(_PAIR_OPTIONS.items()) + [("pairs", "--pairs"), ("V_max", "--V-max"), ("v_max", "--v-max")]:
+        val = getattr(args, key)
+        if val is not None:
+            parts.append(f"{option} {shlex.quote(val) if isinstance(val, str) else repr(val)}")
+    for name in args.pair or ():
+        parts.append(f"--pair {shlex.quote(name)}")
+    return " ".join(parts)
 
 
 def _cmd_velocity(args):
@@ -65,13 +107,15 @@ def _cmd_velocity(args):
     if args.pairs is None:
         names.update(_PAIR_OPTIONS)
     with cli_names(names):
-        pairs = _velocity_pairs(args, velocity)
+        pairs = _pairs_from_args(args, velocity)
         t0 = time.perf_counter()
         results, paths = velocity.write_velocity(args.out, pairs, args.tol, args.V_max)
     return _print_velocity(results, paths, t0)
 
 
-def _velocity_pairs(args, velocity):
+def _pairs_from_args(args, velocity):
+    """The material pairs of a command's :func:`_add_pair_options` (``export velocity``, ``export c``):
+    one from --E --nu --Sy --R --rho/--mass (and --flat-*), or those of a --pairs file (--pair picks)."""
     if args.pairs is not None:
         given = [k for k in _PAIR_OPTIONS if getattr(args, k) is not None]
         if given:
@@ -123,6 +167,22 @@ def _cmd_grid(args):
     return 0
 
 
+def _add_pair_options(parser):
+    """The options of one material pair in SI units, or a --pairs file: ``export velocity`` and
+    ``export c`` share them (read by :func:`_pairs_from_args`)."""
+    parser.add_argument("--E", type=float, help="sphere Young's modulus (Pa)")
+    parser.add_argument("--nu", type=float, help="sphere Poisson's ratio (-)")
+    parser.add_argument("--Sy", type=float, help="sphere yield strength (Pa)")
+    parser.add_argument("--R", type=float, help="sphere radius (m)")
+    parser.add_argument("--rho", type=float, help="sphere density (kg/m^3)")
+    parser.add_argument("--mass", type=float, help="mass of the moving body (kg); default: from --rho")
+    parser.add_argument("--flat-E", dest="flat_E", type=float, help="flat's Young's modulus (Pa); default rigid")
+    parser.add_argument("--flat-nu", dest="flat_nu", type=float, help="flat's Poisson's ratio (-)")
+    parser.add_argument("--flat-Sy", dest="flat_Sy", type=float, help="flat's yield strength (Pa); default never yields")
+    parser.add_argument("--pairs", help="CSV file of pairs: header name,E,nu,Sy,R,rho[,mass,flat_E,flat_nu,flat_Sy,V_max]")
+    parser.add_argument("--pair", action="append", metavar="NAME", help="only this pair of --pairs (repeatable)")
+
+
 def add_parser(sub):
     """Add ``export`` and its subcommands to the top-level subparsers ``sub``."""
     px = sub.add_parser("export", help="files for other tools: gridded NetCDF, velocity tables, C header",
@@ -146,17 +206,7 @@ def add_parser(sub):
                                    "placed so that linear interpolation in V stays within --tol; critical "
                                    "values and provenance in the header. Writes OUT.csv and OUT.json "
                                    "(with --pairs: OUT_<name>.csv per pair and OUT.json).")
-    pv.add_argument("--E", type=float, help="sphere Young's modulus (Pa)")
-    pv.add_argument("--nu", type=float, help="sphere Poisson's ratio (-)")
-    pv.add_argument("--Sy", type=float, help="sphere yield strength (Pa)")
-    pv.add_argument("--R", type=float, help="sphere radius (m)")
-    pv.add_argument("--rho", type=float, help="sphere density (kg/m^3)")
-    pv.add_argument("--mass", type=float, help="mass of the moving body (kg); default: from --rho")
-    pv.add_argument("--flat-E", dest="flat_E", type=float, help="flat's Young's modulus (Pa); default rigid")
-    pv.add_argument("--flat-nu", dest="flat_nu", type=float, help="flat's Poisson's ratio (-)")
-    pv.add_argument("--flat-Sy", dest="flat_Sy", type=float, help="flat's yield strength (Pa); default never yields")
-    pv.add_argument("--pairs", help="CSV file of pairs: header name,E,nu,Sy,R,rho[,mass,flat_E,flat_nu,flat_Sy,V_max]")
-    pv.add_argument("--pair", action="append", metavar="NAME", help="only this pair of --pairs (repeatable)")
+    _add_pair_options(pv)
     pv.add_argument("--V-max", dest="V_max", type=float, help="largest impact speed (m/s)")
     pv.add_argument("--tol", type=float, default=1e-4,
                     help="error of linear interpolation between rows (absolute in e and 1 - e^2, "
@@ -167,12 +217,22 @@ def add_parser(sub):
     pc = xs.add_parser("c", help="self-contained C99 header evaluating e, w_m*, 1 - e^2 per material",
                        description="Static arrays of each material's cells and inline evaluators "
                                    "fastrest_e(k, v1_star, unloading), fastrest_omega_m(k, v1_star), "
-                                   "fastrest_loss(k, v1_star, unloading) (JCG = 0, ETSION = 1, BRAKE = 2); "
-                                   "NaN outside the domain. Link with -lm.")
-    pc.add_argument("--materials", nargs="+", required=True, metavar="EPS_Y:NU",
-                    help="materials k = 0, 1, ...: eps_y = Sy/E' and nu")
-    pc.add_argument("--v-max", dest="v_max", type=float,
-                    help="largest V1* of every material [default: each material's w_m* = 425 speed]")
+                                   "fastrest_loss(k, v1_star, unloading) ("
+                                   + ", ".join(f"{m.short.upper()} = {m.code}" for m in MODELS.values())
+                                   + "); NaN outside the domain. Link with -lm. Materials: normalised "
+                                   "(--materials EPS_Y:NU ...), or material pairs in SI units as for "
+                                   "'export velocity' (--E --nu --Sy --R --rho, or --pairs FILE): the header "
+                                   "then also holds each pair's critical values (fastrest_V_c[k], "
+                                   "fastrest_omega_c[k], fastrest_P_c[k], ...) and fastrest_v1_star(k, V), "
+                                   "V (m/s) -> V1*.")
+    pc.add_argument("--materials", nargs="+", metavar="EPS_Y:NU",
+                    help="normalised materials k = 0, 1, ...: eps_y = Sy/E' and nu")
+    _add_pair_options(pc)
+    pc.add_argument("--V-max", dest="V_max", type=float,
+                    help="largest impact speed (m/s) of a pair given by its properties (a --pairs file's "
+                         "V_max column overrides it) [default: each pair's w_m* = 425 speed]")
+    pc.add_argument("--v-max", dest="v_max", type=float, metavar="V1_STAR",
+                    help="largest V1* of every --materials material [default: each material's w_m* = 425 speed]")
     pc.add_argument("--out", default="fastrest_scene.h", help="output header [default: fastrest_scene.h]")
     pc.set_defaults(func=_cmd_c)
     return px

@@ -19,12 +19,13 @@ import numpy as np
 from .._validation import real_scalar
 from ..curve_data import build_curve_data, curve_array
 from ..direct import impact_array
-from ..limits import v1_star_limit
-from ..materials import Impact, Material
+from ..limits import speed_limit
+from ..impact import Impact
+from ..materials import Material
 from ..tables.file import check_path, read_bounded
 from .. import unloading as _unloading
 from ._io import check_target, provenance, write_files
-from ._placement import JUMP, interior as _interior, place_rows, scaled_error as _scaled_error
+from .._placement import JUMP, interior as _interior, place_rows, scaled_error as _scaled_error
 
 __all__ = ["TOL_MIN", "MAX_ROWS", "MAX_PAIRS", "MAX_PAIRS_BYTES", "Pair", "pair_from_options", "read_pairs",
            "velocity_table", "write_velocity"]
@@ -170,11 +171,11 @@ def velocity_table(impact, V_max, tol):
     tol = _check_tol(tol)
     V_max = real_scalar(V_max, "V_max")
     Vc = impact.V_c
-    lim = v1_star_limit(impact.eps_y, impact.nu) * Vc
+    lim = speed_limit(impact.eps_y, impact.nu) * Vc
     if not (V_max > 0 and V_max <= lim * (1 + 1e-12)):
         raise ValueError(f"V_max = {V_max!r} m/s is outside (0, {lim:.6g}] m/s: the model ends at "
                          f"w_m* = 425 for this pair (V_c = {Vc:.6g} m/s)")
-    v_top = min(V_max / Vc, v1_star_limit(impact.eps_y, impact.nu))
+    v_top = min(V_max / Vc, speed_limit(impact.eps_y, impact.nu))
     curves = _curves(impact.eps_y, impact.nu, v_top)
     knots = [0.0, v_top] + [x for x in (1.0,) + JUMP if x < v_top]
     v = place_rows(lambda x: _values(curves, x), knots, tol, MAX_ROWS)

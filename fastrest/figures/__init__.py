@@ -10,7 +10,7 @@ Matplotlib is imported only when a figure is drawn, so ``import fastrest`` works
 
 Every curve is computed with the exact solver (:mod:`fastrest.direct`) or the closed forms of
 :mod:`fastrest.models`, and stays inside the model's domain: V1* up to
-:func:`fastrest.direct.v1_star_limit` (w_m* = 425, or a/R = 1 if that comes first).
+:func:`fastrest.limit` (w_m* = 425, or a/R = 1 if that comes first).
 
 Modules: :mod:`~fastrest.figures.jgm` (Figs 2-4, the model's own quantities),
 :mod:`~fastrest.figures.comparisons` (Figs 5-6, e beside the comparison models) and

@@ -1,7 +1,7 @@
 """What every figure shares: the Table 1 material, colours and labels, axes, speed grids."""
 import numpy as np
 
-from .. import direct
+from ..limits import limit
 
 __all__ = ["TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES", "COLOURS", "LABELS", "new_axes", "eps_colours",
            "eps_label", "omega_grid", "v_grid", "finish_axes"]
@@ -64,7 +64,7 @@ def v_grid(eps_y, nu, v_lo, n):
     """Log-spaced V1* from v_lo to the model's limit, with nodes either side of V1* = 1.9^1.25."""
     from ..energy import V_SWITCH
 
-    v_hi = direct.v1_star_limit(eps_y, nu)
+    v_hi = limit(eps_y, nu).v1_star
     v = np.geomspace(v_lo, v_hi, n)
     v[-1] = v_hi
     extra = [1.0, V_SWITCH, np.nextafter(V_SWITCH, np.inf)]

@@ -45,7 +45,7 @@ def figure5(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=400):
 
     Notes
     -----
-    JGM eqs (16), (29), (35), (38) with the exact solver :func:`fastrest.direct.e_star`; eq (1).
+    JGM eqs (16), (29), (35), (38) with the exact solver :func:`fastrest.direct.e_exact`; eq (1).
 
     Examples
     --------
@@ -60,7 +60,7 @@ def figure5(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=400):
     for eps, col in zip(eps_y, eps_colours(len(eps_y))):
         v = v_grid(eps, nu, v_lo, n)
         v_top = max(v_top, v[-1])
-        ax.plot(v, direct.e_star(v, eps, nu, "jcg"), color=col, lw=1.6,
+        ax.plot(v, direct.e_exact(v, eps, nu, "jcg"), color=col, lw=1.6,
                 label=f"JGM, eq (35), {eps_label(eps)}")
     v = np.geomspace(v_lo, v_top, n)
     ax.plot(v, models.chang_ling(v, TABLE1_EPS_Y, nu), color=COLOURS["chang_ling"], lw=1.6, ls="--",
@@ -120,7 +120,7 @@ def figure6(*, ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
     fig, ax = new_axes(ax)
     v = v_grid(eps_y, nu, 0.5, n)
     for model in ("jcg", "etsion", "brake"):
-        ax.plot(v, direct.e_star(v, eps_y, nu, model), color=COLOURS[model], lw=1.8,
+        ax.plot(v, direct.e_exact(v, eps_y, nu, model), color=COLOURS[model], lw=1.8,
                 ls="--" if model == "brake" else "-", label=LABELS[model])
     v_fp = float(models.wu_finite_plastic_velocity(eps_y))
     vp = v[v > 1.0]

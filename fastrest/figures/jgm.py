@@ -103,7 +103,7 @@ def figure3(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
 
     Notes
     -----
-    JGM eqs (19), (29)-(31), with the exact solver :func:`fastrest.direct.omega_m_star`.
+    JGM eqs (19), (29)-(31), with the exact solver :func:`fastrest.direct.omega_m_exact`.
 
     Examples
     --------
@@ -118,7 +118,7 @@ def figure3(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
             label=r"Hertz, $V_1^{*4/5}$ (eq 19)")
     for eps, col in zip(eps_y, eps_colours(len(eps_y))):
         v = v_grid(eps, nu, 1.0, n)
-        ax.plot(v, direct.omega_m_star(v, eps, nu), color=col, lw=1.6,
+        ax.plot(v, direct.omega_m_exact(v, eps, nu), color=col, lw=1.6,
                 label=f"JGM (eq 29), {eps_label(eps)}")
     ax.axhline(425.0, color="k", lw=0.8, ls=":")
     ax.annotate(r"model limit $\omega_m^*$ = 425", (1.1, 425.0), xytext=(0, 4),

@@ -11,7 +11,8 @@ import math
 import numpy as np
 
 from .. import models
-from ..materials import Impact, Material
+from ..impact import Impact
+from ..materials import Material
 from ._common import COLOURS, LABELS, finish_axes, new_axes
 
 __all__ = ["ALUMINA_DENSITY", "ALUMINA", "ALUMINIUM_FLAT", "STEEL_FLAT", "KHARAZ_RADIUS", "kharaz_impact", "figure7",

@@ -2,6 +2,7 @@
 import numpy as np
 
 from .._validation import broadcast_named, check_finite_result, check_velocity
+from ..impact import Impact
 
 __all__ = ["V_STAR_UNIT", "finite_out", "broadcast", "refuse_zero_speed", "check_v_star", "check_impact"]
 
@@ -39,7 +40,5 @@ def check_v_star(v1_star):
 
 def check_impact(impact):
     """TypeError unless ``impact`` is a :class:`fastrest.Impact`."""
-    from ..materials import Impact
-
     if not isinstance(impact, Impact):
         raise TypeError(f"impact must be a fastrest.Impact, got {type(impact).__name__}")

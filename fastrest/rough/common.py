@@ -18,6 +18,7 @@ import numpy as np
 
 from .. import forward as fw
 from .._jit import jit
+from .._validation import as_float_array, kernel_array
 from ..contact import W_SWITCH
 
 __all__ = ["OK", "NEEDS_TABLE", "FAILED", "MAX_ITER", "ONSET_BAND", "hertz_fp", "hertz_terms", "jg_terms",
@@ -29,7 +30,7 @@ OK, NEEDS_TABLE, FAILED = 0, 1, 2
 #: Iterations allowed per solve (Newton takes 3-6; bisection at most ~110 on a double's range).
 MAX_ITER = 200
 #: The energy balance is formed relative to the onset of yield while the tallest summit is within
-#: this of w* = 1 (|w* - 1| < 1/16): further away, plain F (as the table holds it) costs at most a
+#: this of w* = 1 (``|w* - 1| < 1/16``): further away, plain F (as the table holds it) costs at most a
 #: factor 16 of rounding in w* - 1 (~1e-15 relative), and the sums stay as cheap as without it.
 ONSET_BAND = 0.0625
 
@@ -117,7 +118,7 @@ def jg_terms(data, w, d, onset):
     --------
     >>> from fastrest import forward
     >>> from fastrest.rough import common
-    >>> data = forward.forward_data(0.005, 0.3, 10.0)
+    >>> data = forward.forward_data(0.005, 0.3, w_max=10.0)
     >>> f, p, k = common.jg_terms(data, 5.0, 4.0, False)
     >>> bool(f > 5.0**2.5 * 0.9 and k == 0.0)
     True
@@ -192,6 +193,40 @@ def _energy_low_array(v, m, two_uc, e_hi, out):
         t, t_lo = _two_prod(e_hi[i], two_uc)
         lo = (((b - t) - t_lo) + (b_lo + m * a_lo)) / two_uc
         out[i] = lo if math.isfinite(lo) else 0.0
+
+
+def check_speeds(V1):
+    """``V1`` as a flat float64 kernel array, every value finite and > 0 (m/s).
+
+    Parameters
+    ----------
+    V1 : float or array_like
+        Impact speeds (m/s).
+
+    Returns
+    -------
+    (ndarray, tuple)
+        The flat speeds and ``V1``'s shape.
+
+    Raises
+    ------
+    TypeError
+        Non-numeric V1.
+    ValueError
+        A V1 that is not finite and > 0, naming it.
+
+    Examples
+    --------
+    >>> check_speeds([0.1, 1.0])[0]
+    array([0.1, 1. ])
+    """
+    v = as_float_array(V1, "V1")
+    flat = kernel_array(v)
+    bad = ~(np.isfinite(flat) & (flat > 0))
+    if np.any(bad):
+        raise ValueError(f"V1 must be finite and > 0 (m/s); got {flat[bad][0]!r} (at V1 = 0 no "
+                         "summit is ever touched and e_s is undefined)")
+    return flat, v.shape
 
 
 def energy_parts(v, m, u_c):

@@ -266,7 +266,7 @@ def gw_jg_sums_kernel(data, g, zs_d, w_cap):
     >>> from fastrest.rough import expectations, heights
     >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
     >>> from fastrest import forward
-    >>> data = forward.forward_data(0.005, 0.3, 40.0)
+    >>> data = forward.forward_data(0.005, 0.3, w_max=40.0)
     >>> jg = expectations.gw_jg_sums_kernel(data, g, 1.0, 40.0)
     >>> hz = expectations.gw_hertz_sums_kernel(g, 1.0)
     >>> bool(abs(jg[0] / hz[0] - 1) < 0.05)  # mostly Hertzian at zs_d = 1, rho_w = 1
@@ -296,7 +296,7 @@ def gw_impact_sums_kernel(data, g, zs_d, w_cap):
     >>> from fastrest.rough import expectations, heights
     >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
     >>> from fastrest import forward
-    >>> data = forward.forward_data(0.005, 0.3, 40.0)
+    >>> data = forward.forward_data(0.005, 0.3, w_max=40.0)
     >>> e_p, e_l, p_c, p_y, w_top = expectations.gw_impact_sums_kernel(data, g, 0.0, 40.0)
     >>> round(p_c, 12), bool(0.0 < p_y < p_c)
     (0.5, True)

@@ -12,7 +12,7 @@ G(lo) < E <= G(hi).
 Near the onset of yield the dissipated energy is proportional to w_i - 1, which w_i = h_i + x
 cannot resolve when x is close to 1. The iteration therefore carries x and delta = x - 1 side by
 side (every step moves both by the same amount; each is accurate where it is small): summit i has
-w_i - 1 = h_i + delta, and, while the tallest summit is near the onset (|delta| < 1/16), the n_1
+w_i - 1 = h_i + delta, and, while the tallest summit is near the onset (abs(delta) < 1/16), the n_1
 summits above w* = 1/2 enter G counted from w* = 1,
 
     G - E = sum_{w_i > 1/2} (F(w_i) - 1) + sum_{0 < w_i <= 1/2} F(w_i) - (E - n_1),
@@ -320,7 +320,7 @@ def solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model):
     >>> import numpy as np
     >>> from fastrest import forward
     >>> from fastrest.rough import explicit
-    >>> data = forward.forward_data(0.005, 0.3, 40.0)
+    >>> data = forward.forward_data(0.005, 0.3, w_max=40.0)
     >>> h, e = np.array([0.0, -0.5]), np.array([50.0])
     >>> x0, d0 = explicit.hertz_estimate(h, e, np.zeros(1))
     >>> out = explicit.solve_impacts(data, h, e, np.zeros(1), x0, d0, 425.0)

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import forward as fw
 from .._validation import ValidityWarning
-from ..limits import interference_limit_message
+from ..limits import interference_limit, interference_limit_message
 from ..unloading import unloading_code
 from .common import NEEDS_TABLE, OK
 
@@ -66,10 +66,10 @@ class ForwardCache:
         code = unloading_code(unloading)
         data = self._data.get(code)
         if data is None or data.w_max < w_max:
-            lim = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
+            lim = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # issued once, by the surface
-                data = fw.forward_data(self.eps_y, self.nu, min(max(w_max, 2.0), lim), unloading,
+                data = fw.forward_data(self.eps_y, self.nu, unloading, w_max=min(max(w_max, 2.0), lim),
                                        extrapolate=extrapolate)
             self._data[code] = data
         return data
@@ -102,7 +102,7 @@ class ForwardCache:
         RuntimeError
             The solver failed (a bug).
         """
-        lim = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
+        lim = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
         data = self._data.get(unloading_code(unloading))
         if data is None:
             data = self.get(unloading, w_max=min(w_guess, lim), extrapolate=extrapolate)

@@ -2,7 +2,7 @@
 
 :func:`gaussian_summits` draws explicit heights; :class:`GreenwoodWilliamson` describes a surface by
 its summit density, height standard deviation, nominal area and height pdf (Greenwood &
-Williamson 1966); :func:`gw_data` turns it into the :class:`~fastrest.rough.statistical.GWData`
+Williamson 1966); :func:`gw_data` turns it into the :class:`~fastrest.rough.expectations.GWData`
 the kernels read.
 """
 import math
@@ -230,7 +230,7 @@ def _std(edges, rows):
 
 
 def gw_data(gw, omega_c):
-    """The kernels' :class:`~fastrest.rough.statistical.GWData` of ``gw``, and its sigma (m).
+    """The kernels' :class:`~fastrest.rough.expectations.GWData` of ``gw``, and its sigma (m).
 
     Parameters
     ----------

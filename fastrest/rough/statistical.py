@@ -294,7 +294,7 @@ def solve_impacts(data, g, energy, zs0, w_model):
     >>> from fastrest import forward
     >>> from fastrest.rough import heights, statistical
     >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
-    >>> data = forward.forward_data(0.005, 0.3, 40.0)
+    >>> data = forward.forward_data(0.005, 0.3, w_max=40.0)
     >>> out = statistical.solve_impacts(data, g, np.array([100.0]), np.array([0.0]), 425.0)
     >>> bool(out[0, 0] == 0 and 0.0 < out[5, 0] / 100.0 < 1.0)
     True

@@ -5,15 +5,15 @@ import sys
 
 import numpy as np
 
-from .. import forward as fw
 from .._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool,
-                           check_finite_positive, kernel_array, real_scalar, warn, warn_if_outside_validated)
+                           check_finite_positive, real_scalar, warn, warn_if_outside_validated)
 from ..energy import f_star_kernel
-from ..limits import interference_limit_message
-from ..materials import Impact, Material
+from ..limits import interference_limit, interference_limit_message
+from ..impact import Impact
+from ..materials import Material
 from ..unloading import unloading_code
 from . import explicit, statistical
-from .common import NEEDS_TABLE, OK, energy_parts
+from .common import NEEDS_TABLE, OK, check_speeds, energy_parts
 from .forward_cache import ForwardCache
 from .heights import GreenwoodWilliamson, gw_data
 from .result import RoughImpact
@@ -301,13 +301,7 @@ class RoughSurface:
         unloading_code(unloading)
         M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
         extrapolate = check_bool(extrapolate, "extrapolate")
-        v = as_float_array(V1, "V1")
-        shape = v.shape
-        flat = kernel_array(v)
-        bad = ~(np.isfinite(flat) & (flat > 0))
-        if np.any(bad):
-            raise ValueError(f"V1 must be finite and > 0 (m/s); got {flat[bad][0]!r} (at V1 = 0 no "
-                             "summit is ever touched and e_s is undefined)")
+        flat, shape = check_speeds(V1)
         e_hi, e_lo = energy_parts(flat, M, self.U_c)  # (V1/V_c)^2: impact energy over U_c
         bad = ~(np.isfinite(e_hi) & (e_hi >= sys.float_info.min))
         if np.any(bad):
@@ -340,7 +334,7 @@ class RoughSurface:
         summits absorb with each at the end of the model (N F(w*_end) U_c: a bound, as every summit
         lies at or below the tallest). Such an impact is certainly past the model's range; below
         the bound the solver finds out (and says so) itself."""
-        w_end = fw.forward_limit(self.eps_y, self.nu, extrapolate=extrapolate)
+        w_end = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
         cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu)  # over U_c
         over = e_hi > cap
         if not np.any(over):
@@ -387,7 +381,7 @@ class RoughSurface:
         statistical.check_resolved(g, energy, lambda k: f"V1 = {self._speed(energy[k], M)!r} m/s")
         # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
         # (a/R = 1) means the impact itself is past it
-        w_end = fw.forward_limit(self.eps_y, self.nu, extrapolate=True)
+        w_end = interference_limit(self.eps_y, self.nu, extrapolate=True)
         hz = statistical.hertz_estimate(g, energy, statistical.HERTZ_CAP * w_end)
         if np.any(hz[0] == NEEDS_TABLE):
             k = int(np.flatnonzero(hz[0] == NEEDS_TABLE)[0])

@@ -1,13 +1,80 @@
 """Impacts of many rough surfaces: here, or one Dask task per surface (:func:`sweep`)."""
+import math
+
 import numpy as np
 
 from .._validation import as_float_array, check_bool, check_finite_positive
 from ..materials import Material
 from ..unloading import unloading_code
+from .common import check_speeds
 from .heights import gaussian_summits
+from .result import RoughImpact
 from .surface import RoughSurface
 
-__all__ = ["sweep", "surface_from_params"]
+__all__ = ["sweep", "surface_from_params", "SweepResults"]
+
+#: What :func:`sweep` records for a surface it cannot build or evaluate (``on_error="report"``):
+#: the errors of the model's domain and of its inputs. Anything else (MemoryError, a bug) raises.
+SURFACE_ERRORS = (ValueError, TypeError, ArithmeticError)
+
+
+class SweepResults(list):
+    """The list of :class:`RoughImpact` that :func:`sweep` returns, with the surfaces it could not do.
+
+    Parameters
+    ----------
+    results : iterable of RoughImpact
+        One per surface, in the order of the sweep's ``surfaces``.
+    errors : list of (int, Exception), optional
+        The failed surfaces: (index into ``surfaces``, the exception its build or impact raised).
+
+    Attributes
+    ----------
+    errors : list of (int, Exception)
+        Empty when every surface succeeded. A failed surface's entry in the list is a
+        RoughImpact of ``kind = "failed"`` whose results (e, loss, d_min, ...) are NaN.
+    ok : ndarray of bool
+        Per surface: True where it succeeded.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest import rough
+    >>> steel = fastrest.Material(E=200e9, nu=0.3, Sy=1e9)
+    >>> specs = [dict(material=steel, R_a=1e-4, gw=dict(eta=1e10, sigma=20e-9, A_n=1e-4)),
+    ...          dict(material=steel, R_a=-1.0, gw=dict(eta=1e10, sigma=20e-9, A_n=1e-4))]  # R_a < 0
+    >>> out = rough.sweep(specs, 0.1, 0.01)
+    >>> out.ok, out[1].kind, out[1].e
+    (array([ True, False]), 'failed', nan)
+    >>> out.errors[0][0], type(out.errors[0][1]).__name__
+    (1, 'ValueError')
+    """
+
+    def __init__(self, results=(), errors=None):
+        super().__init__(results)
+        self.errors = list(errors or [])
+
+    @property
+    def ok(self):
+        bad = {i for i, _ in self.errors}
+        return np.array([i not in bad for i in range(len(self))], dtype=bool)
+
+    def __reduce__(self):
+        return (SweepResults, (list(self), self.errors))
+
+
+def _failed(v, m, unloading):
+    """The RoughImpact of a surface that failed: NaN results of the shape of V1."""
+    def nan():
+        return math.nan if v.ndim == 0 else np.full(v.shape, math.nan)
+
+    V1 = float(v) if v.ndim == 0 else v.copy()
+    with np.errstate(over="ignore"):
+        energy_in = 0.5 * m * np.square(v)   # inf past the largest double, as RoughSurface.impact refuses
+    return RoughImpact(V1=V1, M=m, unloading=unloading, V1_star=nan(), e=nan(), loss=nan(), d_min=nan(),
+                       force_max=nan(), n_contact=nan(), n_yielded=nan(), dissipated=nan(),
+                       energy_in=energy_in if v.ndim else float(energy_in), w_star_max=nan(),
+                       kind="failed")
 
 
 def surface_from_params(material=None, R_a=None, heights=None, gw=None, gaussian=None,
@@ -63,13 +130,19 @@ def surface_from_params(material=None, R_a=None, heights=None, gw=None, gaussian
 
 
 def _sweep_task(factory, params, array_keys, *args):
-    """One parameter set (module-level, so Dask can ship it by reference)."""
+    """One parameter set (module-level, so Dask can ship it by reference); with ``report`` (the
+    last argument) an error of :data:`SURFACE_ERRORS` is returned, not raised."""
     k = len(array_keys)
     params = dict(params)
     params.update(zip(array_keys, args[:k]))
-    V1, M, unloading, extrapolate = args[k:]
-    surface = factory(**params)
-    return surface.impact(V1, M, unloading, extrapolate=extrapolate)
+    V1, M, unloading, extrapolate, report = args[k:]
+    try:
+        surface = factory(**params)
+        return surface.impact(V1, M, unloading, extrapolate=extrapolate)
+    except SURFACE_ERRORS as exc:
+        if not report:
+            raise
+        return exc
 
 
 def _rebuild_surface(material, R_a, heights=None, gw=None):
@@ -78,7 +151,7 @@ def _rebuild_surface(material, R_a, heights=None, gw=None):
 
 
 def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surface_from_params,
-          client=None, scatter_min=100_000):
+          client=None, scatter_min=100_000, on_error="report"):
     """Impacts of many surfaces (or parameter sets) at the speeds ``V1``.
 
     Parameters
@@ -102,21 +175,30 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
         even if several parameter sets use it). Without a client everything runs here.
     scatter_min : int
         Smallest array (elements) scattered rather than sent with its task.
+    on_error : {"report", "raise"}
+        What a surface that cannot be built or evaluated does (a ValueError, TypeError or
+        ArithmeticError from ``factory`` or :meth:`RoughSurface.impact`: a speed past the model's
+        limit, a bad parameter): "report" (default) records it in ``errors`` and the sweep goes on;
+        "raise" raises it (the first one, for a local sweep).
 
     Returns
     -------
-    list of RoughImpact
-        In the order of ``surfaces``; the same numbers with or without a client (the kernels sum
-        in fixed blocks, so thread counts do not change the result).
+    SweepResults
+        A list of :class:`RoughImpact` in the order of ``surfaces``; the same numbers with or
+        without a client (the kernels sum in fixed blocks, so thread counts do not change the
+        result). Its ``errors`` lists (index, exception) of the surfaces that failed, whose
+        entries are RoughImpacts of ``kind = "failed"`` with NaN results; ``ok`` is a boolean
+        array per surface.
 
     Raises
     ------
     ValueError
         A mass out of range, a number of masses that does not match the surfaces, an unknown
-        unloading model, or what a surface's impact refuses.
+        unloading model or ``on_error``; with ``on_error="raise"``, what a surface's impact
+        refuses.
     TypeError
         A surface that is neither a RoughSurface nor a dict, a factory that is not callable, or a
-        non-numeric V1 or M.
+        non-numeric V1 or M (with ``on_error="raise"``, a factory's TypeError too).
 
     Notes
     -----
@@ -130,6 +212,13 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
     >>> specs = [dict(material=steel, R_a=1e-4, gw=dict(eta=1e10, sigma=s, A_n=1e-4)) for s in (20e-9, 50e-9)]
     >>> [r.kind for r in rough.sweep(specs, [0.01, 0.1], 0.01)]
     ['statistical', 'statistical']
+
+    A surface that fails does not stop the others (``on_error="raise"`` to raise instead):
+
+    >>> specs.append(dict(material=steel, R_a=1e-4, gw=dict(eta=1e10, sigma=-1.0, A_n=1e-4)))
+    >>> out = rough.sweep(specs, [0.01, 0.1], 0.01)
+    >>> [r.kind for r in out], [i for i, _ in out.errors], out[2].e
+    (['statistical', 'statistical', 'failed'], [2], array([nan, nan]))
     """
     surfaces = list(surfaces)
     Ma = as_float_array(M, "M")
@@ -141,11 +230,14 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
             raise ValueError(f"M has {len(masses)} values for {len(surfaces)} surfaces")
     for m in masses:
         check_finite_positive(m, "M", "(kg, mass of the flat)")
-    v = as_float_array(V1, "V1")
+    v = check_speeds(V1)[0].reshape(as_float_array(V1, "V1").shape)   # the same V1 for every surface
     unloading_code(unloading)
     check_bool(extrapolate, "extrapolate")
     if not callable(factory):
         raise TypeError("factory must be a callable building a RoughSurface from a dict")
+    if on_error not in ("report", "raise"):
+        raise ValueError(f"on_error must be 'report' or 'raise'; got {on_error!r}")
+    report = on_error == "report"
     specs = []
     for s in surfaces:
         if isinstance(s, RoughSurface):
@@ -157,10 +249,17 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
     if client is None:
         out = []
         for s, spec, m in zip(surfaces, specs, masses):
-            surface = s if isinstance(s, RoughSurface) else factory(**spec)
-            out.append(surface.impact(v, m, unloading, extrapolate=extrapolate))
-        return out
-    v_future = client.scatter(v)
+            try:
+                surface = s if isinstance(s, RoughSurface) else factory(**spec)
+                out.append(surface.impact(v, m, unloading, extrapolate=extrapolate))
+            except SURFACE_ERRORS as exc:
+                if not report:
+                    raise
+                out.append(exc)
+        return _results(out, v, masses, unloading)
+    # hash=False: a fresh key per sweep (a key shared with an earlier sweep of the same data is
+    # released when that sweep's future is collected, cancelling these tasks: "lost dependencies")
+    v_future = client.scatter(v, hash=False)
     shipped = {}  # id(array) -> future: each big array is scattered once
     futures = []
     for s, spec, m in zip(surfaces, specs, masses):
@@ -168,12 +267,19 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
         for key, val in spec.items():
             if isinstance(val, np.ndarray) and val.size >= scatter_min:
                 if id(val) not in shipped:
-                    shipped[id(val)] = (client.scatter(val), val)  # keep val alive for the id
+                    shipped[id(val)] = (client.scatter(val, hash=False), val)  # keep val alive for the id
                 keys.append(key)
                 arrays.append(shipped[id(val)][0])
             else:
                 small[key] = val
         fac = factory if not isinstance(s, RoughSurface) else _rebuild_surface
         futures.append(client.submit(_sweep_task, fac, small, keys, *arrays, v_future, m, unloading,
-                                     extrapolate, pure=False))
-    return client.gather(futures)
+                                     extrapolate, report, pure=False))
+    return _results(client.gather(futures), v, masses, unloading)
+
+
+def _results(out, v, masses, unloading):
+    """SweepResults from the per-surface results, where an exception marks a failed surface."""
+    errors = [(i, r) for i, r in enumerate(out) if isinstance(r, BaseException)]
+    return SweepResults([_failed(v, m, unloading) if isinstance(r, BaseException) else r
+                         for r, m in zip(out, masses)], errors)

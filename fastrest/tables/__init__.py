@@ -18,7 +18,8 @@ Where things are:
 * :mod:`~fastrest.tables.table`: the :class:`Table` object; :mod:`~fastrest.tables.store`: the
   shipped table (package data ``default.h5``), the user cache, :func:`build`, :func:`read`,
   :func:`load_table`; :mod:`~fastrest.tables.default`: ``fastrest.e_star`` and friends;
-* :mod:`~fastrest.tables.error`: the error against the direct solver, tables built to a tolerance;
+* :mod:`~fastrest.tables.error`: the error against the direct solver (measured by
+  :mod:`~fastrest.tables.accuracy`, below :class:`Table`), tables built to a tolerance;
 * :mod:`~fastrest.tables.schema` (arrays <-> file), :mod:`~fastrest.tables.hdf5` and
   :mod:`~fastrest.tables.hdf5_read` (the HDF5 layout), :mod:`~fastrest.tables.file` (the verified
   bytes): the file format of docs/table-format.md; :mod:`~fastrest.tables.probe`: untrusted files

@@ -18,7 +18,7 @@ from .._validation import OMEGA_M_STAR_MAX
 from ..contact import W_SWITCH
 from ..energy import V_SWITCH
 from ..interpolation import two_level_cells
-from ..limits import v1_star_limit
+from ..limits import speed_limit
 from .grid import OMEGA_GRID_HERTZ, OMEGA_GRID_JG, c_eps_y
 from .grid import normalise_grid  # noqa: F401 (used by the examples)
 
@@ -119,7 +119,7 @@ def energy_eps_y_axis(g):
 def v1_star_top(g):
     """The largest V1* (-) a table of grid ``g`` holds.
 
-    The largest w_m* = 425 speed (:func:`fastrest.limits.v1_star_limit`, JGM section 3.3) over the
+    The largest w_m* = 425 speed (:func:`fastrest.limit`, JGM section 3.3) over the
     materials of the top block's nodes, clamped into the grid's eps_y range.
 
     Parameters
@@ -135,7 +135,7 @@ def v1_star_top(g):
     nus = nu_axis(g)
     top = c_eps_y_of_xi(np.linspace(*xi_range(g), g["n_eps_y"]), g["c_eps_y_map_rate"])
     eps = top[:, None] / c_eps_y(1.0, nus)[None, :]
-    return max(v1_star_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
+    return max(speed_limit(min(max(e, g["eps_y_min"]), g["eps_y_max"]), n)
                for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
 
 

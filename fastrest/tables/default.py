@@ -1,6 +1,6 @@
 """The default-table fast API: :func:`omega_m_star`, :func:`e_star`, :func:`loss_star` (also
 ``fastrest.omega_m_star`` etc.), each point with its own material, from the shipped table."""
-from .store import load_table
+from .store import _load_table, load_table  # noqa: F401 (load_table: the docstrings)
 
 __all__ = ["omega_m_star", "e_star", "loss_star"]
 
@@ -55,15 +55,15 @@ _UNLOADING_DOC = """
 
 
 def omega_m_star(v1_star, eps_y, nu):
-    return load_table().omega_m_star(v1_star, eps_y, nu)
+    return _load_table().omega_m_star(v1_star, eps_y, nu)
 
 
 def e_star(v1_star, eps_y, nu, unloading="jcg"):
-    return load_table().e_star(v1_star, eps_y, nu, unloading)
+    return _load_table().e_star(v1_star, eps_y, nu, unloading)
 
 
 def loss_star(v1_star, eps_y, nu, unloading="jcg"):
-    return load_table().loss_star(v1_star, eps_y, nu, unloading)
+    return _load_table().loss_star(v1_star, eps_y, nu, unloading)
 
 
 omega_m_star.__doc__ = _TOP_DOC.format(

@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 import numba as nb
 import numpy as np
 
+from .._deprecation import keyword_only
 from .._jit import jit
 from .._threads import run_parallel
 from .._validation import OMEGA_M_STAR_MAX
@@ -18,7 +19,7 @@ from ..contact import W_SWITCH, area_exponent, omega_star_limit_kernel
 from ..critical import c_of_nu
 from ..energy import F_SWITCH, jg_integral, omega_m_sorted_kernel
 from ..interpolation import DEGREE, share_edges
-from ..limits import v1_star_limit
+from ..limits import speed_limit
 from ..unloading import N_MODELS, restitution_kernel
 from ..cells import jg_nodes
 from .axes import cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis, v1_star_top
@@ -186,7 +187,8 @@ def _progress(jobs, progress):
     return tqdm(jobs, desc="fastrest build", unit="eps_y row", disable=None)
 
 
-def generate(grid=None, progress=None):
+@keyword_only("progress")
+def generate(grid=None, *, progress=None):
     """Compute a table's arrays (no I/O).
 
     Parameters
@@ -240,7 +242,7 @@ def generate(grid=None, progress=None):
         out = np.empty((len(QUANTITIES), nus.size, flat.size))
         run_parallel(quantity_rows_array, None, eps_row, nus, flat, out)
         b.values[:, i] = share_edges(out.reshape(out.shape[:2] + (-1, DEGREE + 1)))
-    v_max = np.array([[v1_star_limit(e, n) for n in nus] for e in eps_w])
+    v_max = np.array([[speed_limit(e, n) for n in nus] for e in eps_w])
     return GeneratedTable(grid=g, eps_y=eps_w, nu=nus, v_top=v_top, base_fine=base_fine, base=base,
                           edges=edges, nodes=nodes, blocks=tuple(blocks), omega_star=omega, W_star=w_star,
                           v1_star_max=v_max)

@@ -9,7 +9,7 @@ from .._version import __version__
 from ..contact import W_SWITCH, omega_star_limit_kernel
 from ..energy import GL_ORDER, PANEL_WIDTH, V_SWITCH
 from ..interpolation import CHEB_U, DEGREE
-from ..limits import v1_star_limit
+from ..limits import speed_limit
 from ..cells import jg_nodes
 from .generation import GeneratedTable
 from .axes import Block, cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis
@@ -254,7 +254,7 @@ def _check_axes_match_grid(gen):
     for b, got in zip(blocks, gen.blocks):
         if got.values.shape[1:] != (b.n, nus.size, b.cstop - b.cell0, DEGREE + 1):
             raise ValueError("a block's values do not have the shape of the grid attributes")
-    v_max = np.array([[v1_star_limit(e, n) for n in gen.nu] for e in gen.eps_y])
+    v_max = np.array([[speed_limit(e, n) for n in gen.nu] for e in gen.eps_y])
     checks = [("nu", nus, gen.nu), ("eps_y", energy_eps_y_axis(g), gen.eps_y), ("cell", edges, gen.edges),
               ("omega_star", omega_axis(), gen.omega_star),
               ("v1_star_nodes", jg_nodes(edges, gen.v_top).reshape(gen.nodes.shape), gen.nodes),

@@ -5,6 +5,9 @@ import warnings
 from pathlib import Path
 
 from .._validation import real_scalar
+from .._deprecation import keyword_only
+from . import error
+from .accuracy import warn_if_inaccurate
 from .file import TableFileError, check_path, check_target, replace_files
 from .generation import generate
 from .grid import grid_key, normalise_grid
@@ -168,7 +171,8 @@ def _resolved(path):
         raise TableFileError(f"{path}: cannot resolve the table file's path ({exc})") from None
 
 
-def load_table(path=None, tol=None):
+@keyword_only("tol")
+def load_table(path=None, *, tol=None):
     """Load a restitution table once per process and return it.
 
     The file is read into NumPy arrays and closed; later calls with the same path return the same
@@ -181,7 +185,8 @@ def load_table(path=None, tol=None):
         A table file written by ``fastrest build``. Default: the shipped table
         (0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45, up to w_m* = 425).
     tol : float, optional
-        The accuracy the caller needs (relative; see :mod:`fastrest.tables.error`), in [1e-14, 1).
+        The accuracy the caller needs (relative; see :mod:`fastrest.tables.error`), in [1e-14, 1);
+        keyword-only (positional: deprecated).
 
     Returns
     -------
@@ -209,6 +214,12 @@ def load_table(path=None, tol=None):
     >>> fastrest.load_table() is fastrest.load_table()
     True
     """
+    return _load_table(path, tol)
+
+
+def _load_table(path=None, tol=None):
+    """:func:`load_table` without the check for a positional ``tol`` (the default table's functions
+    call it on every evaluation)."""
     if tol is not None:
         tol = _check_tol(tol)
     if path is None:
@@ -221,18 +232,15 @@ def load_table(path=None, tol=None):
         table = read(default_table_path() if path is None else path)
         LOADED[key] = entry = (ident, table)
         if tol is None:
-            from .error import warn_if_inaccurate
-
             warn_if_inaccurate(table.attrs.get("measured_error"), None, f"table {table.path}")
     table = entry[1]
     if tol is not None:
-        from .error import warn_if_inaccurate
-
         warn_if_inaccurate(table.attrs.get("measured_error"), tol, f"table {table.path}")
     return table
 
 
-def build(path=None, grid=None, progress=None, measure=True, tol=None):
+@keyword_only("progress", "measure", "tol")
+def build(path=None, grid=None, *, progress=None, measure=True, tol=None):
     """Generate a table, measure its error against the direct solver, write it; return the Table.
 
     Parameters
@@ -287,8 +295,6 @@ def build(path=None, grid=None, progress=None, measure=True, tol=None):
     >>> t.grid["n_eps_y"]
     6
     """
-    from . import error
-
     g = normalise_grid(grid)
     if tol is not None:
         tol = _check_tol(tol)
@@ -328,7 +334,8 @@ def _record_default_digest(digest):
     replace_files({_HERE / "_default_digest.py": text.encode("ascii")}, what="the default table's digest file")
 
 
-def cached_table(grid=None, progress=None, tol=None):
+@keyword_only("progress", "tol")
+def cached_table(grid=None, *, progress=None, tol=None):
     """A table for any grid: the shipped one if it matches, else the user cache, built on first use.
 
     Parameters

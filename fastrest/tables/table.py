@@ -3,13 +3,16 @@ import numba as nb
 import numpy as np
 
 from .. import unloading as _unloading
+from .._deprecation import keyword_only
 from .._jit import compiled_entry
 from .._threads import run_parallel
 from .._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, broadcast_inputs, check_eps_y,
                            check_nu, check_velocity, shaped, warn_if_outside_validated)
-from ..limits import raise_out_of_range, v1_star_limit
+from ..limits import raise_out_of_range, speed_limit
 from ..fastpath import fast_scalar
+from .accuracy import measure
 from .data import table_data
+from ._rectilinear import _check_n_check, _check_tol, dataset
 from .kernel import table_array, table_array_parallel, table_value_kernel
 from .w_star import energy_data, loading_energy_array, W_STAR_OMEGA_MAX
 
@@ -185,7 +188,7 @@ class Table:
         check_velocity(v, "v1_star")
         self._check_material(e, n)
         v0, e0, n0 = float(v[0]), float(e[0]), float(n[0])
-        lim = v1_star_limit(e0, n0)
+        lim = speed_limit(e0, n0)
         if v0 > lim:
             raise_out_of_range(v, e, n, False,
                                hint="fastrest.direct and fastrest.curve accept extrapolate=True")
@@ -342,7 +345,8 @@ class Table:
         raise ValueError(f"w = {float(w[0])!r} at eps_y = {float(e[0])!r}, nu = {float(n[0])!r} lies past, or within "
                          "the interpolation stencil of, the end of the JG law (a/R = 1); use fastrest.W_star")
 
-    def to_xarray(self, tol=1e-3, n_check=20000):
+    @keyword_only("tol", "n_check")
+    def to_xarray(self, *, tol=1e-3, n_check=20000):
         """This table on a rectilinear (v1_star, eps_y, nu) grid as an :class:`xarray.Dataset`.
 
         Parameters
@@ -371,9 +375,8 @@ class Table:
         >>> import fastrest
         >>> ds = fastrest.load_table().to_xarray(tol=1e-2, n_check=200)  # doctest: +SKIP
         """
-        from ..export.grid import to_xarray
-
-        return to_xarray(self, tol, n_check)
+        tol = _check_tol(tol)
+        return dataset(self, tol=tol, n_check=_check_n_check(n_check, allow_zero=True))
 
     def measure_error(self, points=None):
         """Worst error of every quantity against the direct solver.
@@ -397,6 +400,4 @@ class Table:
         >>> fastrest.load_table().measure_error(pts)["e_jcg"]["max_error"] < 1e-9
         True
         """
-        from .error import measure
-
         return measure(self, points)
