@@ -151,7 +151,7 @@ def run(cfg, log=print):
         return f, n_curve
 
     def table_case(t):
-        return (lambda: t.e_star(v, e, n)), N
+        return (lambda: t.e(v, e, n)), N
 
     cases = {
         "copy": ((lambda: np.copyto(dst, v)), N),
@@ -160,8 +160,8 @@ def run(cfg, log=print):
         "fit45_numba": ((lambda: kernels.fit45_loop(v, e, out)), N),
         "fit45_numpy": ((lambda: models.jgm_fit_etsion(v, e)), N),
         "direct": ((lambda: fastrest.direct.e_exact(vd, ed, nud)), nd),
-        "table_default": ((lambda: fastrest.e_star(v, e, n)), N),
-        "table_default_1t": (with_threads(1, lambda: fastrest.e_star(v, e, n)), N),
+        "table_default": ((lambda: fastrest.e(v, e, n)), N),
+        "table_default_1t": (with_threads(1, lambda: fastrest.e(v, e, n)), N),
     }
     for bits, cs in curves.items():
         cases[f"curve_{bits}"] = curve_case(cs)
@@ -196,7 +196,7 @@ def run(cfg, log=print):
     add("table_default_1t", "fastrest.e_star, default table, 1 Numba thread", "table",
         t_err["default"]["e_jcg"]["max_rel_error"], "vs direct", mbytes=default_tab.data.coef.nbytes / 2**20)
     for name, t in tabs.items():
-        add(f"table_{name}", f"Table.e_star, {name}", "table", t_err[name]["e_jcg"]["max_rel_error"],
+        add(f"table_{name}", f"Table.e, {name}", "table", t_err[name]["e_jcg"]["max_rel_error"],
             "vs direct", mbytes=t.data.coef.nbytes / 2**20)
     add("fit4344_numba", "fit (42)-(44), Numba kernel (speed reference)", "fit", fit43_err,
         "deviation from the model (JCG), V1* <= 1000")

@@ -14,30 +14,38 @@ caller's line. Three forms:
 
 Nothing here imports from fastrest: every module may use it.
 """
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
 import functools
 import inspect
 import warnings
 
 __all__ = ["warn_deprecated", "alias", "module_getattr", "keyword_only"]
 
+_F = TypeVar("_F", bound=Callable[..., Any])
+
 #: The release after which deprecated names and forms may go.
 REMOVED_IN = "0.3"
 
 # (module, name) -> (function returning the object, the replacement as users should write it)
-_ALIASES = {}
+_ALIASES: dict[tuple[str, str], tuple[Callable[[], Any], str]] = {}
 
 
-def warn_deprecated(old, new, stacklevel=3):
+def warn_deprecated(old: str, new: str, stacklevel: int = 3, category: type[Warning] = DeprecationWarning) -> None:
     """Warn that ``old`` is deprecated in favour of ``new`` (both as a user writes them).
 
     ``stacklevel`` counts from the caller of this function (default 3: the user's call of the
-    function that calls this one).
+    function that calls this one). ``category``: FutureWarning where no user line can be blamed
+    (a warning raised while Numba compiles the user's function is attributed to fastrest's code,
+    and Python's default filters show a DeprecationWarning only when it is attributed to __main__).
     """
     warnings.warn(f"{old} is deprecated and will be removed in fastrest {REMOVED_IN}; use {new}",
-                  DeprecationWarning, stacklevel=stacklevel)
+                  category, stacklevel=stacklevel)
 
 
-def alias(module, name, new, get):
+def alias(module: str, name: str, new: str, get: Callable[[], Any]) -> None:
     """Register ``module.name`` (``module`` a dotted module name) as a deprecated alias.
 
     ``get()`` returns the object (called on each access, so it may be defined later or above);
@@ -47,16 +55,16 @@ def alias(module, name, new, get):
     _ALIASES[(module, name)] = (get, new)
 
 
-def aliases(module):
+def aliases(module: str) -> dict[str, str]:
     """The deprecated names registered for ``module``: {name: replacement}."""
     return {n: new for (m, n), (_, new) in _ALIASES.items() if m == module}
 
 
-def module_getattr(module):
+def module_getattr(module: str) -> Callable[[str], Any]:
     """A module ``__getattr__`` resolving the deprecated aliases registered for ``module`` with a
     DeprecationWarning (on attribute access and on ``from module import name``)."""
 
-    def __getattr__(name):
+    def __getattr__(name: str) -> Any:
         entry = _ALIASES.get((module, name))
         if entry is None:
             raise AttributeError(f"module {module!r} has no attribute {name!r}")
@@ -68,7 +76,7 @@ def module_getattr(module):
     return __getattr__
 
 
-def keyword_only(*names, old=None):
+def keyword_only(*names: str, old: Callable[[tuple[Any, ...]], bool] | None = None) -> Callable[[_F], _F]:
     """Decorator: options ``names`` are keyword-only in the decorated function's signature, and a
     call that still passes them positionally (in that order, after the positional parameters) works
     and warns, naming the keyword.
@@ -80,7 +88,7 @@ def keyword_only(*names, old=None):
     when one of ``names`` is passed by keyword: that call is in the new form).
     """
 
-    def wrap(f):
+    def wrap(f: _F) -> _F:
         params = list(inspect.signature(f).parameters.values())
         pos = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
         n_pos = len(pos)
@@ -92,7 +100,7 @@ def keyword_only(*names, old=None):
         first = n_pos if old is None else next(i for i, p in enumerate(pos) if p.default is not p.empty)
 
         @functools.wraps(f)
-        def checked(*args, **kwargs):
+        def checked(*args: Any, **kwargs: Any) -> Any:
             if (len(args) > n_pos) if old is None else (
                     len(args) > first and not any(n in kwargs for n in names) and old(args)):
                 extra = args[first:]
@@ -111,6 +119,6 @@ def keyword_only(*names, old=None):
                 args = args[:first]
             return f(*args, **kwargs)
 
-        return checked
+        return cast(_F, checked)
 
     return wrap

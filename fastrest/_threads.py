@@ -21,7 +21,7 @@ _SAFE_LAYERS = ("omp", "tbb")
 def layer_is_thread_safe():
     """True once Numba runs a thread-safe layer (omp, tbb); False for workqueue or not yet chosen."""
     try:
-        return numba.threading_layer() in _SAFE_LAYERS
+        return numba.threading_layer() in _SAFE_LAYERS  # type: ignore[attr-defined]  # not in numba's __all__
     except ValueError:  # no parallel kernel has run yet: the layer is not chosen
         return False
 

@@ -3,6 +3,11 @@
 The Python layer validates and raises; the jitted kernels underneath return NaN for points outside
 the model's definition, so batch loops never raise.
 """
+from __future__ import annotations
+
+from types import FrameType
+from typing import Any
+from numpy.typing import NDArray
 import math
 import numbers
 import os
@@ -106,7 +111,7 @@ def _short(x):
 short_repr = _short
 
 
-def as_float_array(x, name):
+def as_float_array(x: object, name: str) -> NDArray[np.float64]:
     """Return ``x`` as a float64 ndarray.
 
     Raises TypeError naming ``name`` for anything that is not real-valued: strings (NumPy would
@@ -142,7 +147,7 @@ def as_float_array(x, name):
     return a if a.dtype == np.float64 else a.astype(np.float64)
 
 
-def real_scalar(x, name):
+def real_scalar(x: object, name: str) -> float:
     """``x`` as a Python float; TypeError naming ``name`` unless it is one real number."""
     a = as_float_array(x, name)
     if a.ndim != 0:
@@ -150,7 +155,7 @@ def real_scalar(x, name):
     return float(a)
 
 
-def check_bool(x, name):
+def check_bool(x: object, name: str) -> bool:
     """``x`` as a Python bool: only ``True``/``False`` (or NumPy booleans) are accepted.
 
     A flag read by truthiness would take ``"False"``, ``"no"``, 2.5 or NaN as True.
@@ -160,7 +165,7 @@ def check_bool(x, name):
     raise TypeError(f"{name} must be True or False, got {_short(x)} ({type(x).__name__})")
 
 
-def check_count(x, name, lo, hi):
+def check_count(x: object, name: str, lo: int, hi: int) -> int:
     """A whole number ``lo <= x <= hi`` (an int); TypeError for non-numbers, ValueError otherwise."""
     if isinstance(x, numbers.Integral) and not isinstance(x, (bool, np.bool_)):
         v = int(x)
@@ -184,7 +189,7 @@ def broadcast_named(*named):
                          "scalar, or arrays of equal or broadcastable shapes)") from None
 
 
-def kernel_array(a, dtype=np.float64):
+def kernel_array(a: NDArray[Any], dtype: Any = np.float64) -> NDArray[Any]:
     """``a`` as the array every jit array kernel is compiled for: flat (1-d), C-contiguous, aligned,
     writeable, native-endian ``dtype``.
 
@@ -200,7 +205,7 @@ def kernel_array(a, dtype=np.float64):
     return np.require(a, dtype, ("C", "A", "W")).ravel()
 
 
-def broadcast_inputs(*named):
+def broadcast_inputs(*named: tuple[object, str]) -> tuple[list[NDArray[np.float64]], tuple[int, ...]]:
     """Broadcast (array, name) pairs to flat float64 arrays (:func:`kernel_array`); return
     (flat arrays, shape)."""
     arrays = [as_float_array(a, n) for a, n in named]
@@ -211,7 +216,7 @@ def broadcast_inputs(*named):
             for a in arrays], shape
 
 
-def shaped(out, shape):
+def shaped(out: NDArray[np.float64], shape: tuple[int, ...]) -> float | NDArray[np.float64]:
     """Give a kernel's flat output the broadcast shape; 0-d becomes a Python float."""
     out = out.reshape(shape)
     return float(out) if out.ndim == 0 else out
@@ -234,7 +239,7 @@ def check_finite_result(out, what, inputs):
                      "the range where the formula can be evaluated in double precision")
 
 
-def check_finite_positive(x, name, unit):
+def check_finite_positive(x: object, name: str, unit: str) -> NDArray[np.float64]:
     """Raise ValueError unless every element of ``x`` is finite and > 0."""
     a = as_float_array(x, name)
     bad = ~(np.isfinite(a) & (a > 0))
@@ -244,7 +249,7 @@ def check_finite_positive(x, name, unit):
     return a
 
 
-def check_nu(nu, name="nu", allow_half=False):
+def check_nu(nu: object, name: str = "nu", allow_half: bool = False) -> NDArray[np.float64]:
     """Poisson's ratio: the model is defined for 0 <= nu < 0.5 (<= 0.5 for the pure formulas of C)."""
     a = as_float_array(nu, name)
     hi_ok = (a <= 0.5) if allow_half else (a < 0.5)
@@ -256,12 +261,12 @@ def check_nu(nu, name="nu", allow_half=False):
     return a
 
 
-def check_eps_y(eps_y, name="eps_y"):
+def check_eps_y(eps_y: object, name: str = "eps_y") -> NDArray[np.float64]:
     """eps_y = Sy/E' must be finite and > 0."""
     return check_finite_positive(eps_y, name, "(dimensionless, Sy/E')")
 
 
-def check_velocity(v, name, unit="(dimensionless, V1/Vc)"):
+def check_velocity(v: object, name: str, unit: str = "(dimensionless, V1/Vc)") -> NDArray[np.float64]:
     """An impact speed must be finite and >= 0 (0 is the elastic limit, e = 1)."""
     a = as_float_array(v, name)
     bad = ~(np.isfinite(a) & (a >= 0))
@@ -274,10 +279,10 @@ def check_velocity(v, name, unit="(dimensionless, V1/Vc)"):
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 
-def warn(message, category):
+def warn(message: str, category: type[Warning]) -> None:
     """warnings.warn attributed to the first caller outside fastrest (the user's line), however
     deep inside the package the warning is raised."""
-    f = sys._getframe(0)
+    f: FrameType | None = sys._getframe(0)
     level = 1
     while f is not None and f.f_code.co_filename.startswith(_PACKAGE_DIR):
         f = f.f_back

@@ -8,6 +8,10 @@ scene and table stores those rows first. Above the kink each builder places its 
 
 The cell of 1 < V1* <= 1.9^1.25 is ``(bits(V1*) >> HERTZ_SHIFT) - HERTZ_BASE``.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -94,7 +98,7 @@ HERTZ_BASE, HERTZ_EDGES = _hertz_layout()
 N_HERTZ = HERTZ_EDGES.shape[0]
 
 
-def hertz_rows(model):
+def hertz_rows(model: int) -> NDArray[np.float64]:
     """Cell rows of the closed forms over 1 < V1* <= 1.9^1.25 for one unloading model.
 
     Parameters
@@ -127,7 +131,7 @@ def hertz_rows(model):
     return fit_cells(HERTZ_EDGES, share_edges(vals.reshape((3,) + nodes.shape)))
 
 
-def jg_nodes(edges, v_top):
+def jg_nodes(edges: NDArray[np.float64], v_top: float) -> NDArray[np.float64]:
     """The interpolation points of cells above the kink, flattened and increasing.
 
     Parameters

@@ -1,5 +1,8 @@
 """Command line: ``fastrest e`` (the model for one impact), ``build``, ``info``, ``warmup``, ``figures``,
 ``export`` (:mod:`fastrest.export.cli`)."""
+from __future__ import annotations
+
+from typing import Any
 import argparse
 import json
 import math
@@ -18,7 +21,7 @@ def _model_names(values):
     """Names given to ``e --model``/``--models``: repeatable, comma-separated, or ``all``."""
     from .models import MODELS
 
-    names = []
+    names: list[str] = []
     for value in values or []:
         for name in value.split(","):
             name = name.strip()
@@ -55,7 +58,7 @@ def _cmd_e(args):
     crit = imp.critical_values()
     V = np.asarray(args.V, dtype=float)
     try:
-        v1 = imp.v1_star(V, "jcg", extrapolate=args.extrapolate)  # every model is printed; JCG ends first
+        v1: Any = imp.v1_star(V, "jcg", extrapolate=args.extrapolate)  # every model is printed; JCG ends first
     except ValueError as exc:
         msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
         raise ValueError(f"--V: {msg}") from None
@@ -67,7 +70,7 @@ def _cmd_e(args):
         for n in names:
             # one value per speed: a comparison model undefined at a speed (Weir-Tallon at V = 0)
             # gives null there, with the reason, instead of Infinity or losing the other rows
-            vals = []
+            vals: list[float | None] = []
             for v in V:
                 try:
                     vals.append(float(models.evaluate(n, imp, float(v))))
@@ -75,7 +78,7 @@ def _cmd_e(args):
                     vals.append(None)
                     model_notes.append(f"{n} at V = {float(v):g} m/s: {exc}")
             others[n] = vals
-    rows = [{"V": float(a), "V1_star": float(b),
+    rows: list[dict[str, Any]] = [{"V": float(a), "V1_star": float(b),
              "omega_m_star": float(np.atleast_1d(sols[NAMES[0]]["omega_m_star"])[i])} for i, (a, b) in enumerate(zip(V, v1))]
     for m in NAMES:
         for r, e in zip(rows, np.atleast_1d(sols[m]["e"])):
@@ -330,7 +333,7 @@ def _models_text():
 _NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     from ._version import __version__
     from .tables import DEFAULT_GRID
 

@@ -15,11 +15,15 @@ Python wrappers raise.
 Kernels are plain compiled functions of floats (``fastrest._jit.jit``); the public functions below
 validate and broadcast.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
 
-from ._jit import jit
+from ._jit import jit, mul_rn
 from ._validation import OMEGA_STAR_SWITCH, broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
 from .critical import c_of_nu
 
@@ -33,7 +37,7 @@ LN_SWITCH = math.log(W_SWITCH)
 @jit
 def area_exponent(eps_y):
     """B = 0.14 exp(23 eps_y), JGM eq (10)."""
-    return 0.14 * math.exp(23.0 * eps_y)
+    return mul_rn(0.14, math.exp(23.0 * eps_y))  # 1.0 + B: not fused on CUDA either (fastrest._jit)
 
 
 @jit
@@ -95,7 +99,7 @@ def omega_star_limit_kernel(eps_y, nu):
         return a_lim  # Hertz branch: A* = w
     B = area_exponent(eps_y)
     # w^(1+B) / 1.9^B = a_lim
-    return math.exp((math.log(a_lim) + B * math.log(W_SWITCH)) / (1.0 + B))
+    return math.exp((math.log(a_lim) + mul_rn(B, math.log(W_SWITCH))) / (1.0 + B))
 
 
 @jit
@@ -146,7 +150,7 @@ def evaluate_law(kernel, w, eps_y, nu):
     return shaped(out, shape)
 
 
-def P_star(w, eps_y, nu):
+def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """Normalised contact force P* = P/P_c of the JG law, JGM eqs (9), (14).
 
     Parameters
@@ -190,7 +194,7 @@ def P_star(w, eps_y, nu):
     return evaluate_law(_p_star_array, w, eps_y, nu)
 
 
-def A_star(w, eps_y, nu):
+def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """Normalised contact area A* = A/A_c of the Jackson-Green law (-).
 
     Parameters
@@ -232,7 +236,7 @@ def A_star(w, eps_y, nu):
     return evaluate_law(_a_star_array, w, eps_y, nu)
 
 
-def omega_star_limit(eps_y, nu):
+def omega_star_limit(eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """Normalised interference w* at which the contact radius reaches the sphere's (a/R = 1) (-).
 
     The Jackson-Green law ends there: its hardness (JGM eq 12) is stated for 0 < a/R < 1. This is

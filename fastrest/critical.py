@@ -13,8 +13,10 @@ import math
 from collections import namedtuple
 
 import numpy as np
+from numba.core import types
+from numba.extending import overload
 
-from ._jit import jit
+from ._jit import jit, mul_rn
 
 __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
            "critical_interference", "critical_force", "critical_area", "critical_energy",
@@ -36,6 +38,24 @@ def _finite(x):
 def _positive(a, b, c, d):
     """True if all four are > 0 (False for NaN)."""
     return a > 0.0 and b > 0.0 and c > 0.0 and d > 0.0
+
+
+def _exp(x):
+    """exp of a float (``math.exp``, which compiles for the CPU and CUDA) or of an array
+    (``np.exp``, CPU only: :func:`fastrest.poisson_factor`); jit code only. Numba compiles both
+    to the same libm ``exp`` per element on the CPU, so scalars and arrays agree bit for bit."""
+    raise TypeError("_exp is for Numba code")
+
+
+# inline="never": an IR-inlined ``numba.extending.overload`` does not compile for CUDA
+# (numba-cuda 0.30 mixes its IR classes with Numba's); LLVM inlines the call on both targets.
+@overload(_exp)
+def _exp_impl(x):
+    if isinstance(x, types.Number):
+        return lambda x: math.exp(x)
+    if isinstance(x, types.Array):
+        return lambda x: np.exp(x)
+    return None
 
 
 @jit
@@ -64,7 +84,7 @@ def c_of_nu(nu):
     >>> round(c_of_nu(0.33), 6)  # JGM Table 1 prints 1.651
     1.651016
     """
-    return 1.295 * np.exp(0.736 * nu)
+    return 1.295 * _exp(0.736 * nu)
 
 
 @jit
@@ -103,9 +123,9 @@ def effective_modulus(E1, nu1, E2, nu2):
     E1, nu1, E2, nu2 = np.float64(E1), np.float64(nu1), np.float64(E2), np.float64(nu2)
     if not (E1 > 0.0 and E2 > 0.0):
         return math.nan
-    inv = (1.0 - nu1**2) / E1
+    inv = (1.0 - mul_rn(nu1, nu1)) / E1  # mul_rn: not fused into the subtraction on CUDA either
     if E2 < math.inf:
-        inv += (1.0 - nu2**2) / E2
+        inv += (1.0 - mul_rn(nu2, nu2)) / E2
     if not inv > 0.0:  # nu > 1, or both bodies rigid
         return math.nan
     E_eff = 1.0 / inv

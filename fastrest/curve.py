@@ -17,6 +17,11 @@ The curve's data (:mod:`fastrest.curve_data`) is a :class:`~fastrest.curve_data.
 namedtuple of scalars and arrays: pass it to the jit functions of :mod:`fastrest.jit` from your own
 Numba code. Several materials in one batch call: :mod:`fastrest.scene`.
 """
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, overload
+from numpy.typing import ArrayLike, NDArray
 import functools
 
 import numba as nb
@@ -30,6 +35,10 @@ from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array
 from .curve_data import build_curve_data, curve_array, curve_value
 from .fastpath import fast_scalar
 from .limits import speed_limit
+
+if TYPE_CHECKING:
+    # not bound at run time: fastrest.curve.CurveData is a deprecated alias (module __getattr__)
+    from .curve_data import CurveData
 
 __all__ = ["Curve", "curve"]
 
@@ -127,7 +136,7 @@ def _quantity_method(what):
     """The method for quantity ``what``: a scalar fast path, else the checked array path."""
     name, summary, returns, notes, example = _QUANTITIES[what]
 
-    def method(self, v1_star):
+    def method(self: Curve, v1_star: ArrayLike) -> float | NDArray[np.float64]:
         v = v1_star if type(v1_star) is float else fast_scalar(v1_star)
         if v is not None:  # fast scalar path (floats and NumPy real scalars)
             r = self._entry(self._packed[what], v)
@@ -185,7 +194,7 @@ class Curve:
     (20.0, 1.0)
     """
 
-    def __init__(self, eps_y, nu, unloading, data):
+    def __init__(self, eps_y: float, nu: float, unloading: str, data: CurveData) -> None:
         self.eps_y, self.nu, self.unloading, self.data = eps_y, nu, unloading, data
         self.v_max = data.v_max
         self.v_limit = speed_limit(eps_y, nu)
@@ -194,23 +203,23 @@ class Curve:
         self._entry = _scalar_entry()
 
     # The compiled entry point does not pickle: ship the data, compile (or load) it on arrival.
-    def __getstate__(self):
+    def __getstate__(self) -> dict[str, Any]:
         state = self.__dict__.copy()
         del state["_entry"]
         return state
 
-    def __setstate__(self, state):
+    def __setstate__(self, state: dict[str, Any]) -> None:
         self.__dict__.update(state)
         self._entry = _scalar_entry()
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
                 f"v_max={self.v_max!r}, cells={self.data.e_rows.shape[0]})")
 
     def _eval(self, what, v):
         a = as_float_array(v, "v1_star")
         flat = kernel_array(a)
-        out = np.empty(flat.size)
+        out: NDArray[np.float64] = np.empty(flat.size)
         curve_array(self.data, what, flat, out)
         if np.isnan(out).any():
             self._raise(flat[np.isnan(out)])
@@ -222,15 +231,46 @@ class Curve:
         raise ValueError(f"v1_star = {float(bad[0])!r} is beyond this curve's v_max = {self.v_max!r} "
                          "(build the curve with a larger v_max)")
 
-    omega_m = _quantity_method(0)
-    e = _quantity_method(1)
-    loss = _quantity_method(2)
+    if TYPE_CHECKING:  # what mypy sees: a scalar in gives a float out, a sequence an array
+        @overload
+        def omega_m(self, v1_star: float) -> float: ...
+        @overload
+        def omega_m(self, v1_star: Sequence[float]) -> NDArray[np.float64]: ...
+        @overload
+        def omega_m(self, v1_star: ArrayLike) -> float | NDArray[np.float64]: ...
+
+        def omega_m(self, v1_star: ArrayLike) -> float | NDArray[np.float64]:
+            return self._eval(0, v1_star)
+
+        @overload
+        def e(self, v1_star: float) -> float: ...
+        @overload
+        def e(self, v1_star: Sequence[float]) -> NDArray[np.float64]: ...
+        @overload
+        def e(self, v1_star: ArrayLike) -> float | NDArray[np.float64]: ...
+
+        def e(self, v1_star: ArrayLike) -> float | NDArray[np.float64]:
+            return self._eval(1, v1_star)
+
+        @overload
+        def loss(self, v1_star: float) -> float: ...
+        @overload
+        def loss(self, v1_star: Sequence[float]) -> NDArray[np.float64]: ...
+        @overload
+        def loss(self, v1_star: ArrayLike) -> float | NDArray[np.float64]: ...
+
+        def loss(self, v1_star: ArrayLike) -> float | NDArray[np.float64]:
+            return self._eval(2, v1_star)
+    else:
+        omega_m = _quantity_method(0)
+        e = _quantity_method(1)
+        loss = _quantity_method(2)
 
 
-def _warn_past_limit(method):
+def _warn_past_limit(method: Callable[..., Any]) -> Any:
     """``method`` of :class:`Curve`, then the ExtrapolationWarning check of an extrapolated curve."""
     @functools.wraps(method)
-    def checked(self, v1_star):
+    def checked(self: _ExtrapolatedCurve, v1_star: ArrayLike) -> float | NDArray[np.float64]:
         out = method(self, v1_star)
         self._check(v1_star)
         return out
@@ -254,7 +294,8 @@ class _ExtrapolatedCurve(Curve):
     loss = _warn_past_limit(Curve.loss)
 
 
-def curve(eps_y, nu, unloading="jcg", *, v_max=None, extrapolate=False):
+def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | None = None,
+          extrapolate: bool = False) -> Curve:
     """Build a :class:`Curve`: the model for one material, fast, up to the speed a scene needs.
 
     Parameters
@@ -276,7 +317,7 @@ def curve(eps_y, nu, unloading="jcg", *, v_max=None, extrapolate=False):
     Curve
         ``.e(v)``, ``.omega_m(v)``, ``.loss(v)`` at V1* in [0, v_max] (broadcast; ValueError past
         v_max), ``.v_max``, and ``.data`` for :mod:`fastrest.jit`. Accuracy against the direct
-        solver: ~1e-13 relative for e and w_m*, ~2e-12 for 1 - e^2 (README, bench/).
+        solver: ~1e-13 relative for e and w_m*, 3.4e-12 for 1 - e^2 (bench/RESULTS.md).
 
     Raises
     ------

@@ -9,6 +9,10 @@ code (one rule for curves and scenes). The Python objects around it: :mod:`fastr
 (:class:`~fastrest.curve.Curve`) and :mod:`fastrest.scene`; from your own Numba code:
 :mod:`fastrest.jit`.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 from collections import namedtuple
 
 import numpy as np
@@ -204,8 +208,8 @@ def curve_array(data, what, v, out):
 
 # --- building ---------------------------------------------------------------------------------
 
-def build_curve_data(eps_y, nu, unloading="jcg", *, v_max=None, extrapolate=False,
-                     bits_per_octave=BITS_PER_OCTAVE, jg_values=None):
+def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | None = None, extrapolate: bool = False,
+                     bits_per_octave: int = BITS_PER_OCTAVE, jg_values: Any = None) -> CurveData:
     """Tabulate one material: the :class:`CurveData` behind a :class:`~fastrest.curve.Curve`, unchecked inputs.
 
     Parameters

@@ -14,6 +14,10 @@ beyond it a ValueError names the limit and its V1*, unless ``extrapolate=True``,
 with the same formulas up to the point where a/R = 1 and issues an
 :class:`~fastrest.ExtrapolationWarning`.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -75,7 +79,8 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
     return out, shape
 
 
-def omega_m_exact(v1_star, eps_y, nu, *, extrapolate=False):
+def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
+                  extrapolate: bool = False) -> float | NDArray[np.float64]:
     """Normalised maximum interference w_m* = omega_m/omega_c of an impact at V1* (-).
 
     Parameters
@@ -136,7 +141,8 @@ def omega_m_exact(v1_star, eps_y, nu, *, extrapolate=False):
     return shaped(out[0], shape)
 
 
-def e_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
+            extrapolate: bool = False) -> float | NDArray[np.float64]:
     """Coefficient of restitution e = V2/V1 (-) of an impact at V1*, by the exact solver.
 
     Parameters
@@ -203,7 +209,8 @@ def e_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     return shaped(out[1], shape)
 
 
-def loss_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
+               extrapolate: bool = False) -> float | NDArray[np.float64]:
     """Fraction of the impact energy dissipated, 1 - e^2 (-), computed without cancellation.
 
     Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9), where 1 - e_exact(...)**2
@@ -266,7 +273,8 @@ def loss_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     return shaped(out[2], shape)
 
 
-def residual_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
+                   extrapolate: bool = False) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
     """Residual state after the impact: residual interference and radius of curvature (-).
 
     Parameters
@@ -328,7 +336,8 @@ def residual_exact(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
     return shaped(out[3], shape), shaped(out[4], shape)
 
 
-def solve(v1_star, eps_y, nu, unloading="jcg", *, extrapolate=False):
+def solve(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
+          extrapolate: bool = False) -> dict[str, float | NDArray[np.float64]]:
     """Everything the direct solver computes for an impact, from one solve.
 
     Parameters

@@ -11,12 +11,17 @@ Gauss-Legendre quadrature in t = ln z, where the integrand z P*(z) is an entire 
 few 24-point panels give machine precision. The inverse w_m(V1*) is a safeguarded Newton iteration
 on ln F(w) = 2 ln V1* in ln w, with slope d ln F / d ln w = (5/2) w P*(w) / F(w).
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
 
 from ._jit import jit
-from .contact import W_SWITCH, area_exponent, c_of_nu, evaluate_law, p_star_jg
+from .contact import W_SWITCH, area_exponent, evaluate_law, p_star_jg
+from .critical import c_of_nu
 
 
 __all__ = ["W_star", "loading_energy"]
@@ -149,7 +154,7 @@ def _f_star_array(w, eps_y, nu, out):
         out[i] = f_star_kernel(w[i], eps_y[i], nu[i])
 
 
-def loading_energy(w, eps_y, nu):
+def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """Loading energy F(w) = 1 - (W_ep)*(w) to maximum interference w, over U_c (-).
 
     Equal to V1*^2 of the impact whose maximum interference is w (the energy balance, JGM eq 29).
@@ -196,7 +201,7 @@ def loading_energy(w, eps_y, nu):
     return evaluate_law(_f_star_array, w, eps_y, nu)
 
 
-def W_star(w, eps_y, nu):
+def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """Normalised elasto-plastic energy (W_ep)* of JGM eq (25): -(5/2) int_1^w P* dz (-).
 
     Zero at w = 1, negative above; for 0 <= w < 1 the same integral over the Hertz law, 1 - w^2.5.

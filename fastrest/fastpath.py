@@ -6,6 +6,9 @@ when the argument is a plain real scalar, and take the checked array path otherw
 the kernel returns NaN, so that the checked path raises the right error). :func:`fast_scalar` is
 that one decision.
 """
+from __future__ import annotations
+
+from typing import Any
 import numpy as np
 
 __all__ = ["fast_scalar", "FAST_FLOAT", "FAST_CONVERT"]
@@ -17,7 +20,7 @@ FAST_CONVERT = (np.float32, np.float16, np.int8, np.int16, np.int32, np.int64, n
                 np.uint32, np.uint64)
 
 
-def fast_scalar(x):
+def fast_scalar(x: Any) -> float | None:
     """``x`` as a float if it is a real scalar a scalar fast path may take; None otherwise.
 
     Parameters

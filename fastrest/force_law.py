@@ -30,6 +30,11 @@ From Numba: ``law.data`` and :func:`contact_force` (re-exported by :mod:`fastres
 state row of :data:`STATE_SIZE` float64 per contact, zeros for a virgin contact. Several materials
 in one loop: :func:`stack_laws` and :func:`contact_force_stacked`, indexed by material.
 """
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 from collections import namedtuple
 
@@ -228,7 +233,7 @@ def contact_force_stacked(laws, material, state, w):
     return _force_step(models[k], eps_a[k], nu_a[k], w_end_a[k], rows, shift_a[k], base_a[k], state, w)
 
 
-def stack_laws(laws):
+def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
     """One :class:`StackedLaws` holding several materials' contact laws, for
     :func:`contact_force_stacked` in a parallel DEM loop.
 
@@ -491,17 +496,18 @@ class ContactLaw:
     array([ 0.      , 25.647583,  2.401153, 25.647583])
     """
 
-    def __init__(self, eps_y, nu, unloading, extrapolate, data, omega_c=1.0, P_c=1.0):
+    def __init__(self, eps_y: float, nu: float, unloading: str, extrapolate: bool, data: Any, omega_c: float = 1.0,
+                 P_c: float = 1.0) -> None:
         self.eps_y, self.nu, self.unloading, self.extrapolate = eps_y, nu, unloading, extrapolate
         self.data, self.omega_c, self.P_c = data, float(omega_c), float(P_c)
         self.w_max = data.w_max
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         units = "" if self.omega_c == 1.0 and self.P_c == 1.0 else f", omega_c={self.omega_c!r} m, P_c={self.P_c!r} N"
         return (f"ContactLaw(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
                 f"w_max={self.w_max!r}{units})")
 
-    def new_state(self, n=None):
+    def new_state(self, n: int | None = None) -> NDArray[np.float64]:
         """Zeros: the history of ``n`` virgin contacts, for :func:`contact_force` and :meth:`force`.
 
         Parameters
@@ -530,7 +536,7 @@ class ContactLaw:
         """
         return np.zeros(STATE_SIZE if n is None else (check_count(n, "n", 0, 10**9), STATE_SIZE))
 
-    def force(self, interference, state=None):
+    def force(self, interference: ArrayLike, state: NDArray[np.float64] | None = None) -> float | NDArray[np.float64]:
         """Forces along a path of interferences in time order, from a virgin contact.
 
         Parameters
@@ -599,7 +605,7 @@ class ContactLaw:
                              "larger w_max (contact_law(..., w_max=...))")
         raise_out_of_range(v, self.eps_y, self.nu, self.extrapolate, "v1_star", unloading=self.unloading)
 
-    def impact(self, v1_star, *, steps_per_contact=2000, locate_switch=True):
+    def impact(self, v1_star: float, *, steps_per_contact: int = 2000, locate_switch: bool = True) -> dict[str, Any]:
         """e of one impact at V1* integrated in time with this law (:func:`impact_in_time`).
 
         For checking a time step: compare with :func:`fastrest.curve` ``.e(v1_star)``.
@@ -668,7 +674,8 @@ class ContactLaw:
         return {"e": float(e), "omega_m_star": float(wm), "steps": int(steps), "state": state}
 
 
-def contact_law(eps_y, nu, unloading="jcg", *, w_max=None, extrapolate=False, omega_c=1.0, P_c=1.0):
+def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float | None = None, extrapolate: bool = False,
+                omega_c: float = 1.0, P_c: float = 1.0) -> ContactLaw:
     """Build the time-domain :class:`ContactLaw` of one material (normalised: w = omega/omega_c,
     P* = P/P_c).
 

@@ -43,6 +43,10 @@ Use from your own Numba code::
 All ``*_forward`` functions return NaN for w < 0, NaN, or w > data.w_max (no exceptions in jitted
 loops); w = 0 gives 0.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 from collections import namedtuple
 
@@ -52,7 +56,8 @@ from ._deprecation import alias, keyword_only, module_getattr
 from ._jit import jit
 from ._validation import (check_bool, check_count, check_eps_y, check_nu, real_scalar,
                           warn_if_outside_validated)
-from .contact import W_SWITCH, area_exponent, c_of_nu, p_star_jg
+from .contact import W_SWITCH, area_exponent, p_star_jg
+from .critical import c_of_nu
 from .energy import F_SWITCH, jg_integral
 from .limits import interference_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
@@ -473,7 +478,8 @@ def _is_number(x):
 
 
 @keyword_only("w_max", old=lambda args: _is_number(args[2]))
-def forward_data(eps_y, nu, unloading="jcg", *, w_max, extrapolate=False, bits_per_octave=BITS_PER_OCTAVE):
+def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float, extrapolate: bool = False,
+                 bits_per_octave: int = BITS_PER_OCTAVE) -> ForwardData:
     """Tabulate the forward map of one material up to interference ``w_max``.
 
     Parameters

@@ -11,6 +11,12 @@ Note: JGM Tables 1, 3 and 4 print omega_c and P_c smaller than eqs (4) and (6) g
 (1 - nu^2)^2 of the yielding material; their eps_y and C agree with eqs (5) and (11). This module
 implements the equations as printed, not the table values (see docs/model.md).
 """
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, overload
+from numpy.typing import ArrayLike, NDArray
+if TYPE_CHECKING:
+    from .force_law import ContactLaw
 import math
 import sys
 import warnings
@@ -102,12 +108,13 @@ class Impact:
     0.750144
     """
 
-    def __init__(self, sphere, R, flat=None, mass=None):
+    def __init__(self, sphere: Material, R: float, flat: Material | None = None, mass: float | None = None) -> None:
         self._init(sphere, real_scalar(R, "R"), flat, None, mass,
                    names=("sphere", "flat", "R", None, "mass" if mass is not None else None))
 
     @classmethod
-    def two_spheres(cls, sphere1, R1, sphere2, R2, mass1=None, mass2=None):
+    def two_spheres(cls, sphere1: Material, R1: float, sphere2: Material, R2: float, mass1: float | None = None,
+                    mass2: float | None = None) -> Impact:
         """An impact of two free spheres; V1 is then their relative normal speed.
 
         Parameters
@@ -229,52 +236,52 @@ class Impact:
 
     # --- material parameters of the normalised law ---
     @property
-    def nu(self):
+    def nu(self) -> float:
         """Poisson's ratio of the material that yields first (-)."""
         return self.yielding.nu
 
     @property
-    def Sy(self):
+    def Sy(self) -> float:
         """Yield strength of the material that yields first (Pa)."""
         return self.yielding.Sy
 
     @property
-    def C(self):
+    def C(self) -> float:
         """C(nu) of eq (5) for the material that yields first (-)."""
         return poisson_factor(self.nu)
 
     @property
-    def eps_y(self):
+    def eps_y(self) -> float:
         """eps_y = Sy / E' (-), JGM eq (11)."""
         return self.Sy / self.E_eff
 
     # --- critical values, eqs (4), (6), (7), (23), (28) ---
     @property
-    def omega_c(self):
+    def omega_c(self) -> float:
         """Critical interference (m), eq (4)."""
         return critical_interference(self.C, self.Sy, self.E_eff, self.R_eff)
 
     @property
-    def P_c(self):
+    def P_c(self) -> float:
         """Critical force (N), eq (6)."""
         return critical_force(self.C, self.Sy, self.E_eff, self.R_eff)
 
     @property
-    def A_c(self):
+    def A_c(self) -> float:
         """Critical contact area (m^2), eq (7)."""
         return critical_area(self.C, self.Sy, self.E_eff, self.R_eff)
 
     @property
-    def U_c(self):
+    def U_c(self) -> float:
         """Critical strain energy (J), eq (23)."""
         return critical_energy(self.C, self.Sy, self.E_eff, self.R_eff)
 
     @property
-    def V_c(self):
+    def V_c(self) -> float:
         """Critical initial velocity (m/s), eq (28)."""
         return critical_velocity(self.U_c, self.mass)
 
-    def critical_values(self):
+    def critical_values(self) -> dict[str, float]:
         """All critical and effective values as a dict (SI units).
 
         Returns
@@ -304,12 +311,12 @@ class Impact:
             "P_c": self.P_c, "A_c": self.A_c, "U_c": self.U_c, "V_c": self.V_c,
         }
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         flat = "rigid flat" if self.flat is None else repr(self.flat)
         return f"Impact(sphere={self.sphere!r}, R_eff={self.R_eff!r}, flat={flat}, mass={self.mass!r})"
 
     # --- dimensional restitution API (eqs 16, 29-38) ---
-    def V_max(self, unloading="jcg", *, extrapolate=False):
+    def V_max(self, unloading: str = "jcg", *, extrapolate: bool = False) -> float:
         """Largest impact speed the model accepts (m/s).
 
         Parameters
@@ -350,7 +357,7 @@ class Impact:
         """
         return speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * self.V_c
 
-    def v1_star(self, V1, unloading=None, *, extrapolate=False):
+    def v1_star(self, V1: ArrayLike, unloading: str | None = None, *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Normalised impact speed V1* = V1 / V_c (-), JGM eq (28).
 
         Parameters
@@ -402,7 +409,7 @@ class Impact:
                 raise ValueError(f"{exc}{more}") from None
         return float(v) if v.ndim == 0 else v
 
-    def max_interference(self, V1, *, extrapolate=False):
+    def max_interference(self, V1: ArrayLike, *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Maximum interference omega_m (m) for impact speed V1 (m/s): w_m* omega_c, JGM eq (29).
 
         Parameters
@@ -444,7 +451,7 @@ class Impact:
         return direct.omega_m_exact(self.v1_star(V1, extrapolate=extrapolate), self.eps_y, self.nu,
                                    extrapolate=extrapolate) * self.omega_c
 
-    def omega_m(self, V1, extrapolate=False):
+    def omega_m(self, V1: ArrayLike, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Deprecated name of :meth:`max_interference` (metres, unlike the dimensionless
         ``Curve.omega_m``).
 
@@ -484,7 +491,12 @@ class Impact:
         warn_deprecated("Impact.omega_m", "Impact.max_interference (m)")
         return self.max_interference(V1, extrapolate=extrapolate)
 
-    def e(self, V1, unloading="jcg", *, extrapolate=False):
+    @overload
+    def e(self, V1: float, unloading: str = "jcg", *, extrapolate: bool = False) -> float: ...
+    @overload
+    def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]: ...
+
+    def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Coefficient of restitution e = V2 / V1 (-), JGM eqs (16), (38).
 
         Parameters
@@ -528,7 +540,7 @@ class Impact:
         return direct.e_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
                              unloading=unloading, extrapolate=extrapolate)
 
-    def rebound_velocity(self, V1, unloading="jcg", *, extrapolate=False):
+    def rebound_velocity(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Rebound speed V2 = e V1 (m/s) for impact speed V1 (m/s).
 
         Parameters
@@ -571,7 +583,7 @@ class Impact:
         out = out * as_float_array(V1, "V1")
         return float(out) if np.ndim(out) == 0 else out
 
-    def contact_law(self, unloading="jcg", *, extrapolate=False):
+    def contact_law(self, unloading: str = "jcg", *, extrapolate: bool = False) -> ContactLaw:
         """The time-domain contact law of this contact in SI units (:func:`fastrest.contact_law`).
 
         ``law.force(omega)`` takes interferences omega (m) in time order and returns forces (N).
@@ -620,7 +632,7 @@ class Impact:
         return contact_law(self.eps_y, self.nu, unloading, extrapolate=extrapolate, omega_c=self.omega_c,
                            P_c=self.P_c)
 
-    def residual(self, V1, unloading="jcg", *, extrapolate=False):
+    def residual(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
         """Residual interference omega_res (m) and residual radius R_res (m), JGM eqs (33)-(36).
 
         Parameters

@@ -16,6 +16,10 @@ or the end of the domain; a cell starting at the kink takes the JG side's limit 
 evaluate that node one ulp inside the cell). :data:`GAUSS_U` (first-kind Chebyshev points, never at
 the ends) serves functions that may not be evaluated at a cell's ends (a user's height pdf).
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 
 import math
 
@@ -99,12 +103,12 @@ def data_pointer(typingctx, a):
     return sig, codegen
 
 
-def cell_key(v, bits_per_octave):
+def cell_key(v: float, bits_per_octave: int) -> int:
     """Python twin of the kernels' raw cell key: (bits of v) >> (52 - K)."""
     return int(np.float64(v).view(np.int64)) >> (MANTISSA_BITS - bits_per_octave)
 
 
-def cell_edges(v_lo, v_hi, bits_per_octave):
+def cell_edges(v_lo: float, v_hi: float, bits_per_octave: int) -> tuple[int, NDArray[np.float64]]:
     """Cells covering [v_lo, v_hi] (v_lo > 0): (base key, array of [lo, hi] per cell).
 
     The first cell is cut to start at v_lo and the last to end at v_hi (or, when v_hi is exactly a
@@ -122,7 +126,8 @@ def cell_edges(v_lo, v_hi, bits_per_octave):
     return base, np.stack([lo, hi], axis=1)
 
 
-def two_level_cells(v_lo, v_split, v_hi, bits_fine, bits):
+def two_level_cells(v_lo: float, v_split: float, v_hi: float, bits_fine: int,
+                    bits: int) -> tuple[int, int, NDArray[np.float64]]:
     """Cells over [v_lo, v_hi]: 2^bits_fine per octave below ``v_split`` (a power of two), 2^bits
     from it on. Returns (base_fine, base, edges): the row of v is ``key_fine(v) - base_fine`` for
     v < v_split and ``key(v) - base`` otherwise (a compare and a select; see :func:`two_level_index`).
@@ -142,7 +147,7 @@ def two_level_cells(v_lo, v_split, v_hi, bits_fine, bits):
     return base_f, base - fine.shape[0], np.concatenate([fine, coarse])
 
 
-def chebyshev_nodes(edges, u=CHEB_U):
+def chebyshev_nodes(edges: NDArray[np.float64], u: NDArray[np.float64] = CHEB_U) -> NDArray[np.float64]:
     """The interpolation points of every cell, shape (ncell, DEGREE + 1), increasing; with the
     default Lobatto points the first and last are the cell's edges exactly (shared with the
     neighbours)."""
@@ -154,14 +159,14 @@ def chebyshev_nodes(edges, u=CHEB_U):
     return nodes
 
 
-def share_edges(values):
+def share_edges(values: NDArray[np.float64]) -> NDArray[np.float64]:
     """Make each cell's first value the previous cell's last (last axis: nodes, the one before:
     cells): the two are the same point, and a marching solver may have computed them an ulp apart."""
     values[..., 1:, 0] = values[..., :-1, -1]
     return values
 
 
-def values_to_coeffs(values, u=CHEB_U):
+def values_to_coeffs(values: NDArray[np.float64], u: NDArray[np.float64] = CHEB_U) -> NDArray[np.float64]:
     """Monomial coefficients (in u) of the degree-5 polynomials through values at the points ``u``
     (default :data:`CHEB_U`; last axis).
 
@@ -176,7 +181,7 @@ def values_to_coeffs(values, u=CHEB_U):
     return coeffs
 
 
-def fit_cells(edges, values, u=CHEB_U):
+def fit_cells(edges: NDArray[np.float64], values: NDArray[np.float64], u: NDArray[np.float64] = CHEB_U) -> NDArray[np.float64]:
     """Rows [center, 1/half_width, c0..c5] from function values at :func:`chebyshev_nodes` (points ``u``).
 
     ``values`` has shape (..., ncell, DEGREE + 1); the result (..., ncell, ROW).

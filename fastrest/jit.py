@@ -311,8 +311,10 @@ def _deprecated_scene_function(what, old, new, kernel):
 
     @overload(deprecated, inline="always")
     def _compiled(scene, material, v1_star):
+        # FutureWarning: raised while Numba compiles the user's function, where no user line can
+        # be blamed, a DeprecationWarning would be hidden by Python's default filters
         warn_deprecated(f"fastrest.jit.{old}(scene, material, v1_star)",
-                        f"fastrest.jit.{new}(scene, v1_star, material)", stacklevel=2)
+                        f"fastrest.jit.{new}(scene, v1_star, material)", stacklevel=2, category=FutureWarning)
 
         def impl(scene, material, v1_star):
             return scene_value(scene, what, material, v1_star)

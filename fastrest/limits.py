@@ -12,6 +12,9 @@ Three limits bound the maximum interference w_m* = omega_m/omega_c:
 Speed limits follow through the energy balance, V1*^2 = F(w_m*) (eq 29). Kernels return NaN past a
 limit; the Python layer raises through the functions below.
 """
+from __future__ import annotations
+
+from typing import Any
 import math
 from typing import NamedTuple
 
@@ -75,7 +78,7 @@ class Limit(NamedTuple):
     v1_star: float
 
 
-def limit(eps_y, nu, unloading=None, *, extrapolate=False):
+def limit(eps_y: float, nu: float, unloading: str | None = None, *, extrapolate: bool = False) -> Limit:
     """Where the model ends for one material: the largest w_m* and the largest V1* it accepts.
 
     The one function for the model's limits. (:func:`fastrest.omega_star_limit` is the contact

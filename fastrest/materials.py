@@ -12,6 +12,11 @@ Note: JGM Tables 1, 3 and 4 print omega_c and P_c smaller than eqs (4) and (6) g
 (1 - nu^2)^2 of the yielding material; their eps_y and C agree with eqs (5) and (11). This module
 implements the equations as printed, not the table values (see docs/model.md).
 """
+from __future__ import annotations
+
+from types import FrameType
+from typing import Any, overload
+from numpy.typing import ArrayLike, NDArray
 from dataclasses import dataclass
 import math
 import os
@@ -48,7 +53,7 @@ _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 def _warn_caller(message):
     """A ValidityWarning from ``Material.__post_init__`` attributed to the first line outside
     fastrest that built the material (past the dataclass's generated ``__init__``)."""
-    f = sys._getframe(2)  # the frame that called __post_init__: the generated __init__
+    f: FrameType | None = sys._getframe(2)  # the frame that called __post_init__: the generated __init__
     level = 3
     if f is not None and f.f_code.co_name == "__init__" and not f.f_code.co_filename.startswith(_PACKAGE_DIR):
         f, level = f.f_back, level + 1
@@ -71,7 +76,13 @@ def implausible(E=None, Sy=None, rho=None, eps_y=None, prefix=""):
     return out
 
 
-def poisson_factor(nu):
+@overload
+def poisson_factor(nu: float) -> float: ...
+@overload
+def poisson_factor(nu: ArrayLike) -> float | NDArray[np.float64]: ...
+
+
+def poisson_factor(nu: ArrayLike) -> float | NDArray[np.float64]:
     """Critical yield stress coefficient C(nu) = 1.295 exp(0.736 nu), JGM eq (5).
 
     Parameters
@@ -111,7 +122,7 @@ def poisson_factor(nu):
     return c_of_nu(kernel_array(nu)).reshape(nu.shape)
 
 
-def critical_velocity_ratios(nu):
+def critical_velocity_ratios(nu: ArrayLike) -> dict[str, float | NDArray[np.float64]]:
     """Ratios V_c / V_y of JGM eq (28) to the yield velocities of Johnson, Wu et al. and Thornton.
 
     JGM section 2.5 (formulas above Table 2)::
@@ -233,7 +244,7 @@ class Material:
     Sy: float
     rho: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         # store plain floats: a string or a 1-element array here would fail far from its cause
         for name in ("E", "nu", "Sy") + (("rho",) if self.rho is not None else ()):
             object.__setattr__(self, name, real_scalar(getattr(self, name), name))
@@ -252,7 +263,7 @@ class Material:
             _warn_caller(f"Material: {'; '.join(bad)}, implausible for a solid; {UNITS_HINT}")
 
     @property
-    def yield_product(self):
+    def yield_product(self) -> float:
         """C(nu) Sy (Pa): of two bodies, the one with the smaller product yields first (JGM eq 5).
 
         ``inf`` for a body that never yields (``Sy = math.inf``).

@@ -7,6 +7,12 @@ point with material index k is evaluated by :func:`scene_value`, the curves' own
 (:func:`fastrest.curve_data.curve_value`) on material k's rows, so a scene gives bit for bit what
 material k's curve gives. In Numba code: :func:`fastrest.jit.e_material`.
 """
+from __future__ import annotations
+
+from collections.abc import Sequence
+import typing
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
 import math
 from collections import namedtuple
 from collections.abc import Iterable
@@ -56,7 +62,7 @@ Examples
 """
 
 
-def material_index(k):
+def material_index(k: Any) -> int:
     """Material index ``k`` as an int64 in Numba code (a Numba overload: jit code only).
 
     Parameters
@@ -90,12 +96,15 @@ def material_index(k):
     raise TypeError("material_index is for Numba code")
 
 
-@overload(material_index, inline="always")
+# inline="never" (the default): an IR-inlined ``numba.extending.overload`` does not compile for
+# CUDA (numba-cuda 0.30 mixes its IR classes with Numba's); LLVM still inlines the call on both
+# targets (`python -m bench.stencil` unchanged).
+@overload(material_index)
 def _material_index_impl(k):
     if isinstance(k, nb.types.Boolean):
         return lambda k: np.int64(-1)
     if isinstance(k, nb.types.Integer):
-        if k.signed:
+        if k.signed:  # type: ignore[attr-defined]  # Numba's Integer types have it, its stubs do not
             return lambda k: np.int64(k)
         return lambda k: np.int64(k) if k < np.uint64(2**62) else np.int64(-1)
     if isinstance(k, nb.types.Float):
@@ -244,7 +253,7 @@ _QUANTITIES = (
 def _quantity_method(what):
     name, summary, returns, notes, example = _QUANTITIES[what]
 
-    def method(self, v1_star, material):
+    def method(self: Scene, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
         return self._eval(what, v1_star, material)
 
     method.__name__ = name
@@ -290,7 +299,7 @@ class Scene:
     (2, 1.0)
     """
 
-    def __init__(self, curves):
+    def __init__(self, curves: Sequence[Curve]) -> None:
         self.curves = _sequence(curves, "curves", "a sequence of fastrest.Curve")
         if not self.curves:
             raise ValueError("curves is empty: a scene needs at least one material")
@@ -315,10 +324,10 @@ class Scene:
         self.data = SceneData(models.pop(), np.array([c.v_max for c in self.curves]), shifts.pop(),
                               np.array([c.data.base for c in self.curves], dtype=np.int64), offset, *cat)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.curves)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Scene({len(self.curves)} materials, unloading={self.curves[0].unloading!r})"
 
     def _eval(self, what, v1_star, material):
@@ -329,7 +338,7 @@ class Scene:
         shape = v.shape
         vf = kernel_array(v)
         kf = kernel_array(k, np.int64)
-        out = np.empty(vf.size)
+        out: NDArray[np.float64] = np.empty(vf.size)
         scene_array(self.data, what, kf, vf, out)
         bad = np.isnan(out)
         if bad.any():
@@ -346,12 +355,44 @@ class Scene:
         out = out.reshape(shape)
         return float(out) if out.ndim == 0 else out
 
-    omega_m = _quantity_method(0)
-    e = _quantity_method(1)
-    loss = _quantity_method(2)
+    if TYPE_CHECKING:  # what mypy sees: a scalar in gives a float out, a sequence an array
+        @typing.overload
+        def omega_m(self, v1_star: float, material: int) -> float: ...
+        @typing.overload
+        def omega_m(self, v1_star: Sequence[float], material: ArrayLike) -> NDArray[np.float64]: ...
+        @typing.overload
+        def omega_m(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]: ...
+
+        def omega_m(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
+            return self._eval(0, v1_star, material)
+
+        @typing.overload
+        def e(self, v1_star: float, material: int) -> float: ...
+        @typing.overload
+        def e(self, v1_star: Sequence[float], material: ArrayLike) -> NDArray[np.float64]: ...
+        @typing.overload
+        def e(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]: ...
+
+        def e(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
+            return self._eval(1, v1_star, material)
+
+        @typing.overload
+        def loss(self, v1_star: float, material: int) -> float: ...
+        @typing.overload
+        def loss(self, v1_star: Sequence[float], material: ArrayLike) -> NDArray[np.float64]: ...
+        @typing.overload
+        def loss(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]: ...
+
+        def loss(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
+            return self._eval(2, v1_star, material)
+    else:
+        omega_m = _quantity_method(0)
+        e = _quantity_method(1)
+        loss = _quantity_method(2)
 
 
-def scene(materials, unloading="jcg", *, v_max=None, extrapolate=False):
+def scene(materials: Sequence[tuple[float, float]], unloading: str = "jcg", *, v_max: float | None = None,
+          extrapolate: bool = False) -> Scene:
     """Build a :class:`Scene` from (eps_y, nu) pairs: one curve per material, only as far as needed.
 
     Parameters
@@ -408,7 +449,7 @@ def scene(materials, unloading="jcg", *, v_max=None, extrapolate=False):
             raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {_short(m)}")
     unloading_code(unloading)
     if v_max is None:
-        vm = [None] * len(materials)
+        vm: list[Any] = [None] * len(materials)
     else:
         v = as_float_array(v_max, "v_max")
         if not (v.ndim == 0 or v.shape == (len(materials),)):

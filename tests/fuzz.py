@@ -117,7 +117,8 @@ def _targets():
         add(f"direct.{f}", p, lambda f=f, **k: getattr(direct, f)(**k))
     for f in ("omega_m_star", "e_star", "loss_star"):
         add(f"fastrest.{f}", dict(v3), lambda f=f, **k: getattr(fastrest, f)(**k))
-        add(f"Table.{f}", dict(v3), lambda f=f, **k: getattr(tab, f)(**k))
+        t = f[: -len("_star")]  # Table's methods are named like Curve's: omega_m, e, loss
+        add(f"Table.{t}", dict(v3), lambda t=t, **k: getattr(tab, t)(**k))
     for f in ("W_star", "loading_energy"):
         add(f"Table.{f}", dict(w=2.0, eps_y=0.005, nu=0.33), lambda f=f, **k: getattr(tab, f)(**k))
     add("curve", dict(eps_y=0.005, nu=0.33, v_max=20.0, extrapolate=False), lambda **k: fastrest.curve(**k))

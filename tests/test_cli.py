@@ -206,7 +206,7 @@ def test_build_small_grid(capsys, tmp_path):
     assert t.grid["eps_y_blocks"] == [[16.0, 6]] and t.grid["n_eps_y_energy"] == 4
     assert t.grid["eps_y_min"] == tables.DEFAULT_GRID["eps_y_min"]
     ref = fastrest.direct.e_exact(5.0, 0.005, 0.33)
-    assert t.e_star(5.0, 0.005, 0.33) == pytest.approx(ref, rel=1e-3)
+    assert t.e(5.0, 0.005, 0.33) == pytest.approx(ref, rel=1e-3)
     assert list(out_path.parent.glob("*.tmp")) == []
     code, out, err = run(["info", str(out_path)], capsys)
     assert code == 0, err

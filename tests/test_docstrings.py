@@ -16,7 +16,12 @@ MODULES = ["fastrest", "fastrest._validation", "fastrest.contact", "fastrest.ene
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
 
-@pytest.mark.parametrize("name", MODULES)
+#: Their examples compile user loops inlining the table kernel (~10 s each, cold): `slow`.
+SLOW_MODULES = {"fastrest.jit"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(m, marks=pytest.mark.slow) if m in SLOW_MODULES else m
+                                  for m in MODULES])
 def test_examples_run(name):
     mod = importlib.import_module(name)
     result = doctest.testmod(mod, optionflags=FLAGS, report=True)

@@ -136,12 +136,12 @@ def test_wide_table_stops_at_a_over_r_limit():
     lim = fastrest.limit(eps, nu).v1_star
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", fastrest.ValidityWarning)
-        assert t.e_star(lim * 0.99, eps, nu) == pytest.approx(direct.e_exact(lim * 0.99, eps, nu), rel=1e-4)
+        assert t.e(lim * 0.99, eps, nu) == pytest.approx(direct.e_exact(lim * 0.99, eps, nu), rel=1e-4)
         for v in (lim * 1.001, [10.0, lim * 1.5]):
             with pytest.raises(ValueError, match="a/R reaches 1"):
-                t.e_star(v, eps, nu)
+                t.e(v, eps, nu)
             with pytest.raises(ValueError, match="a/R reaches 1"):
-                t.omega_m_star(v, eps, nu)
+                t.omega_m(v, eps, nu)
         out = np.empty(1)
         from fastrest.tables.kernel import table_array
         table_array(t.data, 1, np.array([lim * 1.001]), np.array([eps]), np.array([nu]), out)

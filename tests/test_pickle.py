@@ -19,7 +19,7 @@ def _evaluate(obj):
     if isinstance(obj, fastrest.Scene):
         return obj.e(np.array([5.0, 6.0]), np.array([0, 1]))
     if isinstance(obj, fastrest.Table):
-        return np.array([obj.e_star(5.0, 0.005, 0.33), obj.loss_star(9.0, 0.004, 0.3)])
+        return np.array([obj.e(5.0, 0.005, 0.33), obj.loss(9.0, 0.004, 0.3)])
     return obj.force([0.5, 3.0, 1.0])
 
 

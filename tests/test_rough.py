@@ -559,7 +559,8 @@ def test_sweep_reports_a_failed_surface_and_goes_on():
     good = {"material": STEEL, "R_a": R_A, "gw": {"eta": 1e10, "sigma": IP.omega_c, "A_n": 1e-7}}
     specs = [good, dict(good, R_a=-1.0), {"material": STEEL, "R_a": R_A, "heights": [0.0]}, good]
     masses = [1e-3, 1e-3, 10.0, 1e-3]  # the single summit cannot absorb 10 kg at 0.1 m/s
-    out = rough.sweep(specs, V, masses)
+    with pytest.warns(RuntimeWarning, match=r"2 of 4 surfaces failed.*surfaces\[1\].*R_a"):
+        out = rough.sweep(specs, V, masses)
     assert len(out) == 4 and out.ok.tolist() == [True, False, False, True]
     assert [i for i, _ in out.errors] == [1, 2]
     assert isinstance(out.errors[0][1], ValueError) and "R_a" in str(out.errors[0][1])

@@ -252,3 +252,24 @@ def test_cli_translates_parameter_names(tmp_path, capsys):
     assert cli.main(["export", "c", "--materials", "0.005:0.33", "--v-max", "-1", "--out", out]) == 2
     assert "--v-max must" in capsys.readouterr().err
     assert os.listdir(tmp_path) == []
+
+
+def test_symbolic_link_at_out_is_written_through_not_replaced(tmp_path):
+    """A link at --out is followed, as reading follows it: its target is written, the link stays a
+    link (before, the rename replaced the link itself with a regular file)."""
+    from fastrest.tables.file import replace_files
+    target = tmp_path / "target.txt"
+    target.write_bytes(b"old")
+    link = tmp_path / "link.txt"
+    link.symlink_to(target)
+    replace_files({link: b"new"})
+    assert link.is_symlink() and target.read_bytes() == b"new"
+    dangling = tmp_path / "dangling.txt"
+    dangling.symlink_to(tmp_path / "made.txt")
+    replace_files({dangling: b"x"})
+    assert dangling.is_symlink() and (tmp_path / "made.txt").read_bytes() == b"x"
+    nowhere = tmp_path / "nowhere.txt"
+    nowhere.symlink_to(tmp_path / "no-dir" / "x.txt")
+    with pytest.raises(OSError, match="x.txt"):
+        replace_files({nowhere: b"x"})
+    assert nowhere.is_symlink() and not (tmp_path / "no-dir").exists()

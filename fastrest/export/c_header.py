@@ -2,7 +2,8 @@
 
 The header holds, for each material k of ``--materials``, the rows [center, 1/half_width, c0..c5]
 of :mod:`fastrest.curve` (w_m*, and e and 1 - e^2 of every unloading model) as static arrays of
-hexadecimal float literals (exact), and inline evaluators that follow
+float literals (the shortest decimal that rounds back to each double, at most 17 digits: exact
+under IEEE 754 rounding, in C99 and C++ of any standard), and inline evaluators that follow
 :func:`fastrest.curve.curve_value` operation by operation: the cell from the float's bits, u =
 (v - center) * (1/half_width), Estrin's scheme with ``fma``. The only floating-point operations
 outside ``fma`` are that subtraction and product, u*u, (u*u)*(u*u), (V1* - 1) * r and pow(V1*, 0.8):
@@ -12,7 +13,19 @@ bit for bit (tests/test_export_c.py compares 1e5+ points, cell boundaries includ
 Built from material pairs in SI units (:func:`impact_materials`: the options and ``--pairs`` file of
 ``fastrest export velocity``), the header also holds each pair's critical values (V_c, omega_c,
 P_c, A_c, U_c, E', R', mass) and ``fastrest_v1_star(k, V)``, V (m/s) -> V1* = V/V_c.
+
+The same text compiles unedited as CUDA (nvcc, and NVRTC at run time): under ``__CUDACC__`` every
+function is ``__host__ __device__`` (``FASTREST_FN``) and every table has a ``__device__`` copy
+``NAME_device`` beside the host's ``NAME`` (``FASTREST_TABLE``; ``FASTREST_ARRAY(NAME)`` picks the
+copy of the code being compiled); under NVRTC (``__CUDACC_RTC__``) no system header is included.
+Global rather than ``__constant__`` memory: one material's rows take ~160 kB, the constant bank 64 kB.
 """
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
+if TYPE_CHECKING:
+    from ..impact import Impact
 import math
 import os
 
@@ -32,7 +45,7 @@ from ._io import check_target, provenance, write_files
 __all__ = ["MAX_MATERIALS", "CRITICAL_KEYS", "parse_materials", "impact_materials", "scene_curves", "header_text",
            "write_header"]
 
-#: Most materials in one header (each adds ~420 kB of rows and a curve build).
+#: Most materials in one header (each adds ~370 kB of text, ~160 kB of tables, and a curve build).
 MAX_MATERIALS = 256
 #: Critical values of a pair written into a header built from physical properties (SI units), as
 #: ``fastrest_<key>[k]``: keys of :meth:`fastrest.Impact.critical_values`.
@@ -40,7 +53,7 @@ CRITICAL_KEYS = {"V_c": "m/s", "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": 
                  "R_eff": "m", "mass": "kg", "Sy": "Pa", "C": "-"}
 
 
-def parse_materials(items, option="materials"):
+def parse_materials(items: Sequence[str], option: str = "materials") -> list[tuple[float, float]]:
     """[(eps_y, nu), ...] from ``EPS_Y:NU`` strings; ValueError naming ``option`` otherwise."""
     if isinstance(items, (str, bytes)) or not hasattr(items, "__len__"):
         raise TypeError(f"{option} must be a list of 'EPS_Y:NU' strings, got {type(items).__name__}")
@@ -71,7 +84,8 @@ def _check_materials(materials):
             raise TypeError(f"materials[{k}] must be an (eps_y, nu) pair, got {m!r}")
 
 
-def scene_curves(materials, v_max=None, option="v_max"):
+def scene_curves(materials: Sequence[tuple[float, float]], v_max: float | None = None,
+                 option: str = "v_max") -> list[Any]:
     """Curve data per (material, unloading model): list over materials of lists over model codes.
 
     Each material's curve reaches ``v_max`` (a V1*; or a list of one V1* or None per material), by
@@ -102,7 +116,8 @@ def scene_curves(materials, v_max=None, option="v_max"):
     return out
 
 
-def impact_materials(impacts, V_max=None, names=None):
+def impact_materials(impacts: Sequence[Impact], V_max: float | Sequence[float] | None = None,
+                     names: Sequence[str] | None = None) -> tuple[Any, ...]:
     """(materials, v_max, critical) of a header built from :class:`fastrest.Impact` objects.
 
     Parameters
@@ -155,79 +170,100 @@ def impact_materials(impacts, V_max=None, names=None):
     return materials, v_max, critical
 
 
-def _hex(x):
+def _lit(x):
+    """A C literal of the double x: the shortest decimal that rounds back to x (at most 17
+    significant digits, which IEEE 754 / C99 Annex F compilers convert correctly rounded, hence
+    exactly). Not hexadecimal: C++ before C++17 has no hexadecimal floating literals."""
     x = float(x)
     if math.isnan(x):
-        return "NAN"
+        return "FASTREST_NAN"
     if math.isinf(x):
-        return "INFINITY" if x > 0 else "-INFINITY"
-    return x.hex()
+        return "FASTREST_INFINITY" if x > 0 else "-FASTREST_INFINITY"
+    return repr(x)
+
+
+def _table(ctype, name, dims, values):
+    """One FASTREST_TABLE line: a static const array (and its device copy under CUDA)."""
+    return f"FASTREST_TABLE({ctype}, {name}, {dims}, {{{values}}});"
 
 
 def _rows_literal(rows, indent="    "):
-    return ",\n".join(indent + "{" + ", ".join(_hex(x) for x in r) + "}" for r in rows)
+    return ",\n".join(indent + "{" + ", ".join(_lit(x) for x in r) + "}" for r in rows)
 
 
 _EVAL = r"""
 /* Row layout: [center, 1/half_width, c0, c1, c2, c3, c4, c5]; value = sum c_i u^i,
    u = (v - center) * (1/half_width), by Estrin's scheme with fma (as fastrest.interpolation). */
-static inline double fastrest__poly(const double *r, double v)
+static inline FASTREST_FN double fastrest__poly(const double *r, double v)
 {
     double u = (v - r[0]) * r[1];
     double u2 = u * u;
     return fma(u2 * u2, fma(u, r[7], r[6]), fma(u2, fma(u, r[5], r[4]), fma(u, r[3], r[2])));
 }
 
+/* The bits of a double as a signed 64-bit integer. */
+static inline FASTREST_FN FASTREST_INT64 fastrest__bits(double v)
+{
+#if defined(__CUDA_ARCH__)
+    return __double_as_longlong(v);
+#else
+    FASTREST_INT64 b;
+    memcpy(&b, &v, sizeof b);
+    return b;
+#endif
+}
+
 /* what: 0 w_m*, 1 e, 2 1 - e^2; rows: that quantity's rows (Hertz rows first, then every
    material's JG rows). The rule of fastrest.curve.curve_value. */
-static inline double fastrest__value(const double (*rows)[8], int k, int what, double v)
+static inline FASTREST_FN double fastrest__value(const double (*rows)[8], int k, int what, double v)
 {
+    double v_max;
     if (k < 0 || k >= FASTREST_N_MATERIALS)
-        return NAN;
+        return FASTREST_NAN;
+    v_max = FASTREST_ARRAY(fastrest_v_max)[k];
     if (v > 1.0) {
-        if (v <= fastrest_v_max[k]) {
-            int64_t b;
+        if (v <= v_max) {
+            FASTREST_INT64 b = fastrest__bits(v);
             int hertz = v <= FASTREST_V_SWITCH;
             double r;
-            memcpy(&b, &v, sizeof b);
             r = fastrest__poly(rows[hertz ? (b >> FASTREST_HERTZ_SHIFT) - FASTREST_HERTZ_BASE
-                                          : (b >> FASTREST_SHIFT) - fastrest_base[k]], v);
+                                          : (b >> FASTREST_SHIFT) - FASTREST_ARRAY(fastrest_base)[k]], v);
             if (what == 2 && hertz)
                 r *= v - 1.0;
             return r;
         }
-        return NAN;
+        return FASTREST_NAN;
     }
-    if (v >= 0.0 && v <= fastrest_v_max[k]) {
+    if (v >= 0.0 && v <= v_max) {
         if (what == 0)
             return pow(v, 0.8);
         return what == 1 ? 1.0 : 0.0;
     }
-    return NAN;
+    return FASTREST_NAN;
 }
 
 /* Normalised maximum interference w_m* (JGM eq 29) of material k at V1* = V1/V_c.
    NaN for V1* < 0, NaN, V1* > fastrest_v_max[k] or an unknown k. */
-static inline double fastrest_omega_m(int k, double v1_star)
+static inline FASTREST_FN double fastrest_omega_m(int k, double v1_star)
 {
-    return fastrest__value(fastrest_omega_rows, k, 0, v1_star);
+    return fastrest__value(FASTREST_ARRAY(fastrest_omega_rows), k, 0, v1_star);
 }
 
 /* Coefficient of restitution e (JGM eq 38) of material k at V1*; unloading: FASTREST_JCG,
    FASTREST_ETSION, FASTREST_BRAKE. NaN outside the domain or for an unknown k or unloading. */
-static inline double fastrest_e(int k, double v1_star, int unloading)
+static inline FASTREST_FN double fastrest_e(int k, double v1_star, int unloading)
 {
     if (unloading < 0 || unloading >= FASTREST_N_UNLOADING)
-        return NAN;
-    return fastrest__value(fastrest_e_rows[unloading], k, 1, v1_star);
+        return FASTREST_NAN;
+    return fastrest__value(FASTREST_ARRAY(fastrest_e_rows)[unloading], k, 1, v1_star);
 }
 
 /* Dissipated fraction 1 - e^2 of material k at V1* (relative accuracy kept as V1* -> 1). */
-static inline double fastrest_loss(int k, double v1_star, int unloading)
+static inline FASTREST_FN double fastrest_loss(int k, double v1_star, int unloading)
 {
     if (unloading < 0 || unloading >= FASTREST_N_UNLOADING)
-        return NAN;
-    return fastrest__value(fastrest_loss_rows[unloading], k, 2, v1_star);
+        return FASTREST_NAN;
+    return fastrest__value(FASTREST_ARRAY(fastrest_loss_rows)[unloading], k, 2, v1_star);
 }
 """
 
@@ -235,16 +271,70 @@ static inline double fastrest_loss(int k, double v1_star, int unloading)
 _V1_STAR = r"""
 /* V1* = V / V_c (JGM eq 30) of material pair k for a normal impact speed V (m/s): the argument of
    fastrest_e, fastrest_omega_m and fastrest_loss. NaN for an unknown k. */
-static inline double fastrest_v1_star(int k, double V)
+static inline FASTREST_FN double fastrest_v1_star(int k, double V)
 {
     if (k < 0 || k >= FASTREST_N_MATERIALS)
-        return NAN;
-    return V / fastrest_V_c[k];
+        return FASTREST_NAN;
+    return V / FASTREST_ARRAY(fastrest_V_c)[k];
 }
 """
 
+# Portability block: C99, C++ and CUDA (nvcc, NVRTC) from one text. Under CUDA each table is
+# defined twice from the same initializer (the host's `name`, the device's `name_device`: a
+# namespace-scope array that device code reads must be __device__, and host code cannot read a
+# __device__ one), both in nvcc's host and device passes (a __device__ variable's declaration must
+# not depend on __CUDA_ARCH__); FASTREST_ARRAY picks the copy inside function bodies. __constant__
+# memory (64 kB) is too small: one material's rows take ~160 kB.
+_PORTABLE = r"""/* C99, C++ or CUDA. Under CUDA (__CUDACC__: nvcc, NVRTC) the functions are __host__ __device__ and
+   every table has a device copy, NAME_device (global memory: the rows of one material, ~160 kB,
+   do not fit in the 64 kB of __constant__ memory); FASTREST_ARRAY(NAME) is the copy of the code
+   being compiled, e.g. FASTREST_ARRAY(fastrest_V_c)[k] in host and device code alike. NVRTC
+   (__CUDACC_RTC__) has no system headers: none is included, and there are no host copies.
+   Define FASTREST_FN before including to qualify the functions otherwise (e.g. __device__). */
+#if !defined(__CUDACC_RTC__)
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+#define FASTREST_INT64 int64_t
+#define FASTREST_INT64_C(c) INT64_C(c)
+#define FASTREST_NAN NAN
+#define FASTREST_INFINITY INFINITY
+#else
+#define FASTREST_INT64 long long
+#define FASTREST_INT64_C(c) c##LL
+#define FASTREST_NAN (0.0 / 0.0)
+#define FASTREST_INFINITY (1.0 / 0.0)
+#endif
+#ifndef FASTREST_FN
+#if defined(__CUDACC__)
+#define FASTREST_FN __host__ __device__
+#else
+#define FASTREST_FN
+#endif
+#endif
+#if defined(__CUDACC_RTC__)
+#define FASTREST_TABLE(type, name, dims, ...) static __device__ const type name##_device dims = __VA_ARGS__
+#elif defined(__CUDACC__)
+#define FASTREST_TABLE(type, name, dims, ...) static const type name dims = __VA_ARGS__; \
+    static __device__ const type name##_device dims = __VA_ARGS__
+#else
+#define FASTREST_TABLE(type, name, dims, ...) static const type name dims = __VA_ARGS__
+#endif
+#if defined(__CUDA_ARCH__)
+#define FASTREST_ARRAY(name) name##_device
+#else
+#define FASTREST_ARRAY(name) name
+#endif
+#if defined(__CUDACC__)
+#pragma nv_diagnostic push
+#pragma nv_diag_suppress 177 /* a table's unused device copy: "declared but never referenced" */
+#endif
+"""
 
-def header_text(materials, curves, name="fastrest_scene.h", command=None, critical=None, names=None):
+
+def header_text(materials: Sequence[tuple[float, float]], curves: Sequence[Any], name: str = "fastrest_scene.h",
+                command: str | None = None, critical: Sequence[dict[str, float]] | None = None,
+                names: Sequence[str] | None = None) -> str:
     """The header's text for ``materials`` and their :func:`scene_curves`.
 
     ``critical``: each material pair's :meth:`fastrest.Impact.critical_values` (a header built from
@@ -285,57 +375,55 @@ def header_text(materials, curves, name="fastrest_scene.h", command=None, critic
                      + (f" (V up to {c[0].v_max * critical[k]['V_c']:.6g} m/s, V_c = {critical[k]['V_c']:.6g} m/s)"
                         if critical else ""))
     lines += [" * Evaluate with fastrest_e(k, v1_star, unloading), fastrest_omega_m(k, v1_star),",
-              " * fastrest_loss(k, v1_star, unloading); V1* = V1/V_c (JGM eq 28). NaN outside [0, v_max[k]]."]
+              " * fastrest_loss(k, v1_star, unloading); V1* = V1/V_c (JGM eq 30). NaN outside [0, v_max[k]]."]
     if critical:
         lines += [" * Built from physical properties: fastrest_v1_star(k, V) gives V1* of a speed V (m/s), and",
                   " * fastrest_<name>[k] the pair's critical values (SI units, FASTREST_HAS_CRITICAL 1)."]
-    lines += [" * C99, needs only libm (link with -lm). */",
+    lines += [" * C99 or C++, needs only libm (link with -lm); compiles unedited as CUDA (nvcc, NVRTC). */",
               f"#ifndef {guard}", f"#define {guard}", "",
-              "#include <math.h>", "#include <stdint.h>", "#include <string.h>", "",
+              _PORTABLE,
               f"#define FASTREST_N_MATERIALS {len(materials)}",
               f"#define FASTREST_N_UNLOADING {nm}"]
     lines += [f"#define FASTREST_{m.short.upper()} {m.code}" for m in _unloading.MODELS.values()]
-    lines += [f"#define FASTREST_V_SWITCH {_hex(V_SWITCH)} /* 1.9^1.25: end of Hertz loading */",
+    lines += [f"#define FASTREST_V_SWITCH {_lit(V_SWITCH)} /* 1.9^1.25: end of Hertz loading */",
               f"#define FASTREST_HERTZ_SHIFT {HERTZ_SHIFT}",
-              f"#define FASTREST_HERTZ_BASE INT64_C({HERTZ_BASE})",
+              f"#define FASTREST_HERTZ_BASE FASTREST_INT64_C({HERTZ_BASE})",
               f"#define FASTREST_SHIFT {shift}", "",
               "/* largest V1* of each material */",
-              "static const double fastrest_v_max[FASTREST_N_MATERIALS] = {"
-              + ", ".join(_hex(c[0].v_max) for c in curves) + "};",
+              _table("double", "fastrest_v_max", "[FASTREST_N_MATERIALS]", ", ".join(_lit(c[0].v_max) for c in curves)),
               "/* row of V1* > 1.9^1.25 for material k: (bits of V1*) >> FASTREST_SHIFT minus this */",
-              "static const int64_t fastrest_base[FASTREST_N_MATERIALS] = {"
-              + ", ".join(f"INT64_C({b})" for b in base) + "};",
+              _table("FASTREST_INT64", "fastrest_base", "[FASTREST_N_MATERIALS]",
+                     ", ".join(f"FASTREST_INT64_C({b})" for b in base)),
               "/* eps_y = Sy/E' (JGM eq 11) and nu of each material */",
-              "static const double fastrest_eps_y[FASTREST_N_MATERIALS] = {"
-              + ", ".join(_hex(e) for e, _ in materials) + "};",
-              "static const double fastrest_nu[FASTREST_N_MATERIALS] = {"
-              + ", ".join(_hex(n) for _, n in materials) + "};",
+              _table("double", "fastrest_eps_y", "[FASTREST_N_MATERIALS]", ", ".join(_lit(e) for e, _ in materials)),
+              _table("double", "fastrest_nu", "[FASTREST_N_MATERIALS]", ", ".join(_lit(n) for _, n in materials)),
               f"#define FASTREST_HAS_CRITICAL {1 if critical else 0}"]
     if critical:
         lines.append("/* critical values of each pair (JGM eqs 4-7, 23, 28; fastrest.Impact.critical_values) */")
         for key, unit in CRITICAL_KEYS.items():
             vals = [c[key] for c in critical]
-            lines.append(f"static const double fastrest_{key}[FASTREST_N_MATERIALS] = {{"
-                         + ", ".join(_hex(v) for v in vals) + f"}}; /* {unit}: "
-                         + ", ".join(f"{v:.6g}" for v in vals) + " */")
+            lines.append(_table("double", f"fastrest_{key}", "[FASTREST_N_MATERIALS]", ", ".join(_lit(v) for v in vals))
+                         + f" /* {unit}: " + ", ".join(f"{v:.6g}" for v in vals) + " */")
     lines += ["",
-              f"static const double fastrest_omega_rows[{nrow}][{ROW}] = {{",
-              _rows_literal(omega), "};"]
+              f"FASTREST_TABLE(double, fastrest_omega_rows, [{nrow}][{ROW}], {{",
+              _rows_literal(omega), "});"]
     for field, name in (("e_rows", "e"), ("loss_rows", "loss")):
-        lines.append(f"static const double fastrest_{name}_rows[FASTREST_N_UNLOADING][{nrow}][{ROW}] = {{")
+        lines.append(f"FASTREST_TABLE(double, fastrest_{name}_rows, [FASTREST_N_UNLOADING][{nrow}][{ROW}], {{")
         blocks = []
         for code in range(nm):
             blocks.append(f"  {{ /* {_unloading.NAMES[code]} */\n" + _rows_literal(cat(field, code)) + "\n  }")
         lines.append(",\n".join(blocks))
-        lines.append("};")
-    lines.append(_EVAL)
+        lines.append("});")
+    lines += ["#if defined(__CUDACC__)", "#pragma nv_diagnostic pop", "#endif", _EVAL]
     if critical:
         lines.append(_V1_STAR)
     lines.append(f"#endif /* {guard} */")
     return "\n".join(lines) + "\n"
 
 
-def write_header(path, materials, v_max=None, command=None, *, critical=None, names=None):
+def write_header(path: str | os.PathLike[str], materials: Sequence[tuple[float, float]], v_max: float | None = None,
+                 command: str | None = None, *, critical: Sequence[dict[str, float]] | None = None,
+                 names: Sequence[str] | None = None) -> tuple[str | os.PathLike[str], list[Any]]:
     """Build the curves and write the header atomically; returns (path, curves).
 
     ``path`` must be a regular file or a new path in a writable directory (checked first, as are

@@ -3,6 +3,11 @@
 The Python functions name their own parameters in errors (``V_max``, ``tol``, ``path``); the
 commands translate those names into their options (:func:`cli_names`).
 """
+from __future__ import annotations
+
+import argparse
+from collections.abc import Iterator
+from typing import Any
 import contextlib
 import re
 import shlex
@@ -17,7 +22,7 @@ _PAIR_OPTIONS = {k: "--" + k.replace("_", "-") for k in
 
 
 @contextlib.contextmanager
-def cli_names(names, out="--out"):
+def cli_names(names: dict[str, str], out: str | None = "--out") -> Iterator[None]:
     """Re-raise a TypeError or ValueError with the Python parameters of ``names`` (parameter ->
     option) written as the command's options, and an OSError (it names the file) prefixed with
     the option ``out`` that gave the file (None: unchanged).
@@ -183,10 +188,10 @@ def _add_pair_options(parser):
     parser.add_argument("--pair", action="append", metavar="NAME", help="only this pair of --pairs (repeatable)")
 
 
-def add_parser(sub):
+def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argparse.ArgumentParser:
     """Add ``export`` and its subcommands to the top-level subparsers ``sub``."""
     px = sub.add_parser("export", help="files for other tools: gridded NetCDF, velocity tables, C header",
-                        description="Export the model for tools outside Python (README: 'Using fastrest "
+                        description="Export the model for tools outside Python (docs/export.md: 'Using fastrest "
                                     "from other tools'). Every file is written atomically.")
     xs = px.add_subparsers(dest="what", required=True, metavar="WHAT")
 

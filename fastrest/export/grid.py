@@ -16,6 +16,13 @@ the direct solver (:mod:`fastrest.direct`): trilinear and tricubic (4-point Lagr
 interpolation in (:func:`v_coordinate` (V1*), eps_y, nu): V1* - 1 up to V1* = 1, ln V1* above. Error: ``|interpolated - exact| / max(|exact|, 1)``, i.e.
 absolute for e and 1 - e^2, relative for w_m* > 1.
 """
+from __future__ import annotations
+
+import os
+from typing import TYPE_CHECKING, Any
+if TYPE_CHECKING:
+    import xarray
+    from ..tables import Table
 import numpy as np
 
 from .._deprecation import keyword_only
@@ -41,7 +48,7 @@ def _check_table(table):
 
 
 @keyword_only("tol")
-def grid_arrays(table=None, *, tol=DEFAULT_TOL):
+def grid_arrays(table: Table | None = None, *, tol: float = DEFAULT_TOL) -> dict[str, Any]:
     """Nodes and values of the grid: dict(v1_star, eps_y, nu, values={name: (nv, ne, nn) array}).
 
     ``table``: a :class:`fastrest.tables.Table` or None (the shipped one); ``tol`` in
@@ -52,7 +59,7 @@ def grid_arrays(table=None, *, tol=DEFAULT_TOL):
 
 
 @keyword_only("tol", "n_check")
-def to_xarray(table=None, *, tol=DEFAULT_TOL, n_check=20000):
+def to_xarray(table: Table | None = None, *, tol: float = DEFAULT_TOL, n_check: int = 20000) -> xarray.Dataset:
     """The grid as an :class:`xarray.Dataset` (needs xarray: ``pip install fastrest[xarray]``)."""
     tol = _check_tol(tol)
     n_check = _check_n_check(n_check, allow_zero=True)
@@ -88,7 +95,8 @@ def _hdf5_image(grid, attrs):
 
 
 @keyword_only("tol", "table_path", "n_check")
-def write_grid(path, *, tol=None, table_path=None, n_check=20000):
+def write_grid(path: str | os.PathLike[str], *, tol: float | None = None,
+               table_path: str | os.PathLike[str] | None = None, n_check: int = 20000) -> tuple[Any, Any]:
     """Build the grid, measure it, and write a CF NetCDF4/HDF5 file (atomically).
 
     Every argument is checked before anything is computed or written: ``path`` must be a regular

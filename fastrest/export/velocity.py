@@ -7,6 +7,10 @@ is within ``tol`` of the exact e and 1 - e^2 (absolute) and of w_m* (relative); 
 the fast curves (:mod:`fastrest.curve`) and the result is then measured against the direct solver
 at 15 points inside every interval.
 """
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
 import csv
 import io
 import json
@@ -41,15 +45,15 @@ CHECKS_PER_INTERVAL = 15
 PAIR_KEYS = ("name", "E", "nu", "Sy", "R", "rho", "mass", "flat_E", "flat_nu", "flat_Sy", "V_max")
 
 
-class Pair(dict):
+class Pair(dict[str, Any]):
     """One material pair's inputs (SI units) as given: name, E, nu, Sy, R, rho/mass, flat_*, V_max."""
 
 
-def pair_from_options(**kw):
+def pair_from_options(**kw: Any) -> Pair:
     return Pair({k: kw.get(k) for k in PAIR_KEYS})
 
 
-def read_pairs(path):
+def read_pairs(path: str | os.PathLike[str]) -> list[Pair]:
     """Material pairs from a CSV file with a header row (columns of :data:`PAIR_KEYS`; ``name``,
     ``E``, ``nu``, ``Sy``, ``R`` and ``rho`` or ``mass`` required, empty cells = not given).
 
@@ -76,7 +80,7 @@ def read_pairs(path):
     if unknown or None in rows[0]:
         raise ValueError(f"unknown column(s) {sorted(map(str, unknown))} in {path!r}; "
                          f"valid: {', '.join(PAIR_KEYS)}")
-    pairs = []
+    pairs: list[Pair] = []
     for i, r in enumerate(rows, start=2):
         p = Pair()
         for k in PAIR_KEYS:
@@ -159,7 +163,7 @@ def _check_tol(tol):
     return tol
 
 
-def velocity_table(impact, V_max, tol):
+def velocity_table(impact: Impact, V_max: float | None, tol: float) -> dict[str, Any]:
     """Rows and measured errors for one :class:`fastrest.Impact` up to V_max (m/s).
 
     Returns a dict: ``columns`` (name -> array), ``critical`` (critical values), ``measured``
@@ -253,7 +257,8 @@ def _paths(out, pairs):
     return csvs, base + ".json"
 
 
-def write_velocity(out, pairs, tol, V_max=None):
+def write_velocity(out: str | os.PathLike[str], pairs: Sequence[Pair], tol: float,
+                   V_max: float | None = None) -> tuple[list[tuple[Any, dict[str, Any]]], list[Any]]:
     """Compute every pair's table, then write ``out``.csv (one pair) or ``out``_<name>.csv (several)
     and ``out``.json (all pairs); nothing is written unless every pair succeeds. Returns
     (list of (pair, result), list of paths).

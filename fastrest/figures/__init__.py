@@ -17,8 +17,17 @@ Modules: :mod:`~fastrest.figures.jgm` (Figs 2-4, the model's own quantities),
 :mod:`~fastrest.figures.kharaz` (Figs 7-8, alumina spheres on aluminium and steel: the masses and
 moduli used there, which the paper does not give in full, are documented in that module).
 """
+from __future__ import annotations
+
 import io
 import os
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 from pathlib import Path
 
 from .._validation import check_count
@@ -33,7 +42,7 @@ __all__ = ["figure2", "figure3", "figure4", "figure5", "figure6", "figure7", "fi
            "TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES"]
 
 #: Output file stem -> figure function, in the paper's order.
-FIGURES = {
+FIGURES: dict[str, Callable[..., tuple[Figure, Axes]]] = {
     "fig2_energy": figure2,
     "fig3_max_interference": figure3,
     "fig4_residual_interference": figure4,
@@ -46,7 +55,7 @@ FIGURES = {
 MAX_DPI = 1200
 
 
-def write_all(out_dir, *, dpi=150):
+def write_all(out_dir: str | os.PathLike[str], *, dpi: int = 150) -> list[Path]:
     """Draw every figure into ``out_dir`` as PNG (created if needed); return the list of paths.
 
     Files are named after :data:`FIGURES` (``fig2_energy.png`` ...). PNG metadata carry no software

@@ -1,4 +1,11 @@
 """JGM Figs 5-6: e against V1*, this model beside Chang-Ling, the unloading models and Wu et al."""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 import numpy as np
 
 from .. import direct
@@ -12,7 +19,8 @@ _V_LABEL = r"normalised impact speed $V_1^* = V_1/V_c$ (eq 30) [-]"
 _E_LABEL = r"coefficient of restitution $e = V_2/V_1$ (eq 16) [-]"
 
 
-def figure5(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=400):
+def figure5(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu: float = TABLE1_NU,
+            n: int = 400) -> tuple[Figure, Axes]:
     """JGM Fig 5: e against V1* for several eps_y, this model (JCG unloading, eq 35) and Chang-Ling.
 
     Chang & Ling's eq (1) (CEB contact law; see :func:`fastrest.models.chang_ling` for the reading
@@ -71,7 +79,7 @@ def figure5(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=400):
     return fig, ax
 
 
-def figure6(*, ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
+def figure6(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = TABLE1_NU, n: int = 400) -> tuple[Figure, Axes]:
     """JGM Fig 6: e against V1* with JCG (eq 35) and Etsion (eq 33) unloading, and Wu et al.
 
     With, as an extra curve not in the paper, the JG loading with Brake's unloading

@@ -1,4 +1,11 @@
 """JGM Figs 2-4: the model's own quantities (energy, maximum and residual interference)."""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 import numpy as np
 
 from .. import direct
@@ -12,7 +19,8 @@ from ._common import (COLOURS, EPS_Y_SERIES, TABLE1_EPS_Y, TABLE1_NU, eps_colour
 __all__ = ["figure2", "figure3", "figure4"]
 
 
-def figure2(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
+def figure2(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu: float = TABLE1_NU,
+            n: int = 300) -> tuple[Figure, Axes]:
     """JGM Fig 2: normalised elasto-plastic energy -(W_ep)* (eq 25) against w* (eq 13), log axes.
 
     -(W_ep)* = (5/2) int_1^w* P* dz (work done past the onset of yield, in units of U_c, eq 24),
@@ -70,7 +78,8 @@ def figure2(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
     return fig, ax
 
 
-def figure3(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
+def figure3(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu: float = TABLE1_NU,
+            n: int = 300) -> tuple[Figure, Axes]:
     """JGM Fig 3: normalised maximum interference w_m* (eq 31) against V1* = V1/V_c (eq 30).
 
     Solution of the energy balance (29) for several eps_y at nu = ``nu``, each up to its own
@@ -130,7 +139,7 @@ def figure3(*, ax=None, eps_y=EPS_Y_SERIES, nu=TABLE1_NU, n=300):
     return fig, ax
 
 
-def figure4(*, ax=None, eps_y=TABLE1_EPS_Y, nu=TABLE1_NU, n=400):
+def figure4(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = TABLE1_NU, n: int = 400) -> tuple[Figure, Axes]:
     """JGM Fig 4: residual interference ratio w_res/w_m against w_m*: the JCG fit, eq (35).
 
     The finite element points of Jackson, Chusoipin & Green (2005) that the paper plots with the

@@ -6,6 +6,13 @@ density :data:`ALUMINA_DENSITY` = 3950 kg/m^3 (not given in the paper), and E' f
 elasticity (1/E' = sum (1-nu^2)/E). The experimental points of Kharaz & Gorham (2000) shown in the
 paper are not reproduced (the data are not available to fastrest).
 """
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 import math
 
 import numpy as np
@@ -33,7 +40,7 @@ STEEL_FLAT = Material(E=200e9, nu=0.29, Sy=1.03e9, rho=7800.0)
 KHARAZ_RADIUS = 0.0025
 
 
-def kharaz_impact(flat):
+def kharaz_impact(flat: str) -> Impact:
     """The impact of JGM Figs 7-8: an alumina sphere (R = 2.5 mm) on a flat ``"aluminium"`` or ``"steel"``.
 
     The mass is the alumina sphere's, (4/3) pi R^3 :data:`ALUMINA_DENSITY` (an assumed density;
@@ -142,11 +149,11 @@ Examples
 """
 
 
-def figure7(*, ax=None, v_max=5.0, n=400):
+def figure7(*, ax: Axes | None = None, v_max: float = 5.0, n: int = 400) -> tuple[Figure, Axes]:
     return _figure_kharaz(ax, "aluminium", 7, v_max, n)
 
 
-def figure8(*, ax=None, v_max=5.0, n=400):
+def figure8(*, ax: Axes | None = None, v_max: float = 5.0, n: int = 400) -> tuple[Figure, Axes]:
     return _figure_kharaz(ax, "steel", 8, v_max, n)
 
 

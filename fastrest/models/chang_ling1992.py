@@ -5,6 +5,12 @@
 .. [CEB] W.R. Chang, I. Etsion, D.B. Bogy, "An elastic-plastic model for the contact of rough
    surfaces", ASME J. Tribol. 109 (1987) 257-263.
 """
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
+if TYPE_CHECKING:
+    from ..impact import Impact
 import math
 
 import numpy as np
@@ -16,7 +22,7 @@ from ._common import broadcast, check_impact, check_v_star, finite_out
 __all__ = ["ceb_hardness_factor", "chang_ling", "chang_ling_dimensional"]
 
 
-def ceb_hardness_factor(nu):
+def ceb_hardness_factor(nu: ArrayLike) -> float | NDArray[np.float64]:
     """Mean contact pressure of the CEB model in units of Sy: K H / Sy = 2.8 (0.454 + 0.41 nu).
 
     Chang, Etsion & Bogy (1987) [CEB]_: hardness H = 2.8 Sy and hardness factor
@@ -86,7 +92,7 @@ def _cl_e(s, r):
     return np.where(plastic, e, 1.0)
 
 
-def chang_ling(v1_star, eps_y, nu, *, critical="ceb"):
+def chang_ling(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, critical: str = "ceb") -> float | NDArray[np.float64]:
     """Coefficient of restitution of Chang & Ling (1992) [CL]_, from the CEB model, JGM eq (1).
 
     Derivation (dimensional form: :func:`chang_ling_dimensional`). CEB [CEB]_: for
@@ -170,7 +176,7 @@ def chang_ling(v1_star, eps_y, nu, *, critical="ceb"):
     return finite_out(_cl_e(v * s_per_v, r), ("v1_star", v))
 
 
-def chang_ling_dimensional(impact, V1, *, critical="ceb"):
+def chang_ling_dimensional(impact: Impact, V1: ArrayLike, *, critical: str = "ceb") -> float | NDArray[np.float64]:
     """Chang & Ling (1992) e for an :class:`~fastrest.Impact` at speed V1 (m/s): JGM eq (1) in SI units.
 
     Evaluates eq (1) term by term, with the reading and constants documented in

@@ -4,6 +4,10 @@ NumPy functions that validate and warn (:func:`jgm_fit_jcg`, :func:`jgm_fit_etsi
 functions that do neither (``*_kernel``: one point, NaN outside the domain; ``*_array``: a loop
 over arrays writing into ``out``), the speed reference of the benchmarks.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -31,7 +35,7 @@ def _warn_fit(v, eps, check_v_max):
              + "; the formula is evaluated as printed", ValidityWarning)
 
 
-def jgm_fit_jcg(v1_star, eps_y):
+def jgm_fit_jcg(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.float64]:
     """JGM's empirical fit to their model with JCG unloading (eq 35): eqs (42)-(44).
 
     * V1* <= 1: e = 1 (eq 42);
@@ -92,7 +96,7 @@ def jgm_fit_jcg(v1_star, eps_y):
     return finite_out(e, ("v1_star", v), ("eps_y", eps))
 
 
-def jgm_fit_etsion(v1_star, eps_y):
+def jgm_fit_etsion(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.float64]:
     """JGM's empirical fit to their model with Etsion et al. unloading (eq 33): eq (45).
 
     e = 1 - 0.0361 eps_y^(-0.114) ln(V1*) (V1* - 1)^(9.5 eps_y) for V1* > 1, and e = 1 for

@@ -1,4 +1,10 @@
 """The comparison models under one calling convention: :data:`MODELS` and :func:`evaluate`."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
+if TYPE_CHECKING:
+    from ..impact import Impact
 import math
 
 import numpy as np
@@ -44,7 +50,7 @@ MODELS = {
 }
 
 
-def evaluate(model_name, impact, V1, *, rho=None):
+def evaluate(model_name: str, impact: Impact, V1: ArrayLike, *, rho: float | None = None) -> float | NDArray[np.float64]:
     """Coefficient of restitution of a comparison model for an impact at speed V1 (m/s).
 
     For every model except Weir-Tallon and Chang-Ling this is

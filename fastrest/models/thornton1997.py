@@ -3,6 +3,10 @@
 .. [Th] C. Thornton, "Coefficient of restitution for collinear collisions of elastic-perfectly
    plastic spheres", J. Appl. Mech. 64 (1997) 383-386.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -17,7 +21,7 @@ __all__ = ["THORNTON_COEFFICIENT", "thornton"]
 THORNTON_COEFFICIENT = math.sqrt(6.0 * math.sqrt(3.0) / 5.0)
 
 
-def thornton(v1_star, nu):
+def thornton(v1_star: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """Coefficient of restitution of Thornton (1997) [Th]_, JGM eq (2).
 
     Parameters

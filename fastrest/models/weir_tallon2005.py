@@ -4,6 +4,10 @@
    particle impacts", Chem. Eng. Sci. 60 (2005) 3637.
 .. [J] K.L. Johnson, Contact Mechanics, Cambridge University Press (1985).
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -25,7 +29,8 @@ def _radius_ratio(R1, R):
     return R1 / R
 
 
-def weir_tallon(V1, Sy, E_eff, rho, R1=None, R=None, *, cap=False):
+def weir_tallon(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, R1: float | None = None, R: float | None = None, *,
+                cap: bool = False) -> float | NDArray[np.float64]:
     """Coefficient of restitution of Weir & Tallon (2005) [WT]_, JGM eq (3), in SI units.
 
     .. math::
@@ -107,7 +112,7 @@ def weir_tallon(V1, Sy, E_eff, rho, R1=None, R=None, *, cap=False):
     return finite_out(e, ("V1", V1), ("Sy", Sy), ("E_eff", E_eff), ("rho", rho))
 
 
-def johnson(V1, Sy, E_eff, rho, *, cap=False):
+def johnson(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, *, cap: bool = False) -> float | NDArray[np.float64]:
     """Johnson's (1985) simplified fully-plastic impact model [J]_: JGM eq (3) with R1 = R.
 
     e = 3.1 (Sy/E')^(5/8) (sqrt(E'/rho) / V1)^(1/4). Identical to
@@ -154,7 +159,8 @@ def johnson(V1, Sy, E_eff, rho, *, cap=False):
     return weir_tallon(V1, Sy, E_eff, rho, cap=cap)
 
 
-def weir_tallon_unit_velocity(Sy, E_eff, rho, R1=None, R=None):
+def weir_tallon_unit_velocity(Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, R1: float | None = None,
+                              R: float | None = None) -> float | NDArray[np.float64]:
     """Speed (m/s) at which JGM eq (3) equals 1: V = 3.1^4 (Sy/E')^(5/2) (R1/R)^(3/2) sqrt(E'/rho).
 
     This is the apparent "critical velocity" of Weir & Tallon's closed form [WT]_ that JGM contrast
@@ -203,7 +209,7 @@ def weir_tallon_unit_velocity(Sy, E_eff, rho, R1=None, R=None):
     return finite_out(out, ("Sy", Sy), ("E_eff", E_eff), ("rho", rho))
 
 
-def weir_tallon_normalised(v1_star, eps_y, nu):
+def weir_tallon_normalised(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """JGM eq (3) with R1 = R (Johnson) in JGM's normalisation: e = 3.1 (40 pi)^(1/8) (pi C)^(-5/8) V1*^(-1/4).
 
     Derivation: for a sphere of density rho and radius R on a flat, m = (4/3) pi rho R^3, and

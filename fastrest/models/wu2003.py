@@ -3,6 +3,10 @@
 .. [Wu] C.Y. Wu, L.Y. Li, C. Thornton, "Rebound behaviour of spheres for plastic impacts",
    Int. J. Impact Eng. 28 (2003) 929-946.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import numpy as np
 
 from .._validation import check_eps_y, check_nu
@@ -29,7 +33,7 @@ def _wu_inputs(v, eps, nu, scale):
     return v, eps
 
 
-def wu_finite_plastic_velocity(eps_y, nu=None, *, scale="jgm"):
+def wu_finite_plastic_velocity(eps_y: ArrayLike, nu: ArrayLike | None = None, *, scale: str = "jgm") -> float | NDArray[np.float64]:
     """Onset of "finite plastic deformation" of Wu et al. (2003) [Wu]_, JGM eq (39), as V_fp / V_c.
 
     V_fp = 0.008 V_c (E'/Sy)^2, i.e. V_fp / V_c = 0.008 / eps_y^2 with the default
@@ -76,7 +80,7 @@ def wu_finite_plastic_velocity(eps_y, nu=None, *, scale="jgm"):
     return finite_out(out, ("eps_y", eps))
 
 
-def wu(v1_star, eps_y, nu=None, *, scale="jgm"):
+def wu(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike | None = None, *, scale: str = "jgm") -> float | NDArray[np.float64]:
     """Coefficient of restitution of Wu, Li & Thornton (2003) [Wu]_, JGM eqs (39)-(41).
 
     With V the impact speed in units of the model's critical velocity (see ``scale``):
@@ -148,7 +152,7 @@ def _eqs_40_41(V, eps):
     return 2.08 * V**-0.25, 0.62 * (V * eps) ** -0.5
 
 
-def wu_branches(v1_star, eps_y, nu=None, *, scale="jgm"):
+def wu_branches(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike | None = None, *, scale: str = "jgm") -> tuple[Any, Any]:
     """Both branches of Wu et al. (2003) [Wu]_, JGM eqs (40) and (41), each at every speed.
 
     :func:`wu` takes eq (40) up to V_fp (eq 39) and eq (41) above; this gives both everywhere, for

@@ -1,4 +1,10 @@
 """Yield velocities of the other models against JGM's critical velocity (JGM section 2.5, Table 2)."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
+if TYPE_CHECKING:
+    from ..impact import Impact
 import numpy as np
 
 from .._validation import check_nu
@@ -11,7 +17,7 @@ __all__ = ["yield_velocity_ratio", "yield_velocity"]
 _YIELD_MODELS = ("jgm", "johnson", "wu", "thornton", "ceb")
 
 
-def yield_velocity_ratio(nu, model):
+def yield_velocity_ratio(nu: ArrayLike, model: str) -> float | NDArray[np.float64]:
     """Ratio V_c / V_y of JGM's critical velocity (eq 28) to another model's yield velocity.
 
     JGM section 2.5 and Table 2. ``"johnson"``, ``"wu"`` and ``"thornton"`` come from
@@ -64,7 +70,7 @@ def yield_velocity_ratio(nu, model):
     return finite_out(critical_velocity_ratios(nu_a)[model])
 
 
-def yield_velocity(impact, model):
+def yield_velocity(impact: Impact, model: str) -> float:
     """Yield velocity V_y (m/s) of ``model`` for an impact: V_c / :func:`yield_velocity_ratio`.
 
     Parameters

@@ -12,6 +12,10 @@ The impact energy over U_c, E = M V1^2 / (2 U_c) = (V1/V_c)^2, is carried as an 
 ``e_hi + e_lo`` (:func:`_energy_low_array`), so that E - n (n summits counted from their onset) keeps
 its relative accuracy when E is close to n.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -229,7 +233,7 @@ def check_speeds(V1):
     return flat, v.shape
 
 
-def energy_parts(v, m, u_c):
+def energy_parts(v: NDArray[np.float64], m: float, u_c: float) -> Any:
     """Impact energies over one summit's critical energy, as double plus correction.
 
     Parameters

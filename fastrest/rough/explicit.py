@@ -25,6 +25,10 @@ still limit delta to an absolute ~1e-16 (their F carries the rounding of their h
 Sums run in ``prange`` over fixed blocks of :data:`BLOCK` summits whose partial sums are added in
 block order: results do not depend on the number of threads.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
@@ -246,7 +250,7 @@ def _explicit_impacts_array(data, h, e_hi, e_lo, x0, d0, w_model, out):
                 out[4 + j, k] = t[j]
 
 
-def hertz_estimate(h, e_hi, e_lo):
+def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The deepest approach of every impact with all summits Hertzian (no forward table).
 
     Parameters
@@ -286,7 +290,7 @@ def hertz_estimate(h, e_hi, e_lo):
     return out[1].copy(), out[2].copy()
 
 
-def solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model):
+def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64], x0: NDArray[np.float64], d0: NDArray[np.float64], w_model: float) -> NDArray[np.float64]:
     """Impacts on explicit summits under the JG law, with the forward table ``data``.
 
     Parameters

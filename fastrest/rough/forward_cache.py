@@ -1,4 +1,10 @@
 """A surface's forward tables: built for its summits' material only as far as its impacts need."""
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
+from ..forward import ForwardData
 import warnings
 
 import numpy as np
@@ -37,11 +43,11 @@ class ForwardCache:
     True
     """
 
-    def __init__(self, eps_y, nu):
+    def __init__(self, eps_y: float, nu: float) -> None:
         self.eps_y, self.nu = eps_y, nu
-        self._data = {}
+        self._data: dict[Any, ForwardData] = {}
 
-    def get(self, unloading="jcg", *, w_max=0.0, extrapolate=False):
+    def get(self, unloading: str = "jcg", *, w_max: float = 0.0, extrapolate: bool = False) -> ForwardData:
         """The table of one unloading model serving at least w* <= ``w_max``.
 
         Parameters
@@ -74,7 +80,9 @@ class ForwardCache:
             self._data[code] = data
         return data
 
-    def solve(self, run, w_guess, unloading, extrapolate, where, note=None):
+    def solve(self, run: Callable[[ForwardData, float], NDArray[np.float64]], w_guess: float, unloading: str,
+              extrapolate: bool, where: Callable[[int], str],
+              note: Callable[[float], str] | None = None) -> NDArray[np.float64]:
         """Run a solver, growing the table until no impact needs more of it.
 
         Parameters

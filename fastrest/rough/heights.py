@@ -5,6 +5,10 @@ its summit density, height standard deviation, nominal area and height pdf (Gree
 Williamson 1966); :func:`gw_data` turns it into the :class:`~fastrest.rough.expectations.GWData`
 the kernels read.
 """
+from __future__ import annotations
+
+from typing import Any, cast
+from numpy.typing import ArrayLike, NDArray
 import math
 import numbers
 from dataclasses import dataclass
@@ -30,7 +34,7 @@ PDF_CELLS_PER_SIGMA = 64
 SIGMA_SAMPLE_MAX = 2.0**1017
 
 
-def gaussian_summits(n, sigma, seed=None):
+def gaussian_summits(n: int, sigma: float, seed: int | np.random.Generator | None = None) -> NDArray[np.float64]:
     """Summit heights drawn from a normal distribution of mean 0.
 
     Parameters
@@ -154,7 +158,7 @@ class GreenwoodWilliamson:
     sigma: float | None = None
     A_n: float = 1.0
     pdf: object = None
-    support: tuple | None = None
+    support: tuple[Any, ...] | None = None
 
     def __post_init__(self):
         # plain floats: an array or a string here would fail far from its cause
@@ -185,7 +189,7 @@ class GreenwoodWilliamson:
             check_finite_positive(self.sigma, "sigma", "(m, standard deviation of summit heights)")
 
     @property
-    def n_summits(self):
+    def n_summits(self) -> float:
         """N = eta A_n, the expected number of summits on the nominal area (-)."""
         return self.eta * self.A_n
 
@@ -229,7 +233,7 @@ def _std(edges, rows):
     return math.sqrt(max(m2 - m1 * m1, 0.0))
 
 
-def gw_data(gw, omega_c):
+def gw_data(gw: GreenwoodWilliamson, omega_c: float) -> tuple[GWData, float]:
     """The kernels' :class:`~fastrest.rough.expectations.GWData` of ``gw``, and its sigma (m).
 
     Parameters
@@ -263,10 +267,11 @@ def gw_data(gw, omega_c):
     (2.0, 1000000.0, 2e-08)
     """
     if gw.pdf is None:
-        sigma = float(gw.sigma)
+        sigma = float(cast(float, gw.sigma))  # set whenever pdf is None (__post_init__)
         return GWData(0, float(gw.n_summits), sigma / omega_c, -np.inf, np.inf, 0.0, np.zeros((1, 8))), sigma
     if gw.sigma is None:  # tabulate on a provisional scale to find sigma, then again in z/sigma
-        span = float(gw.support[1]) - float(gw.support[0])
+        support = cast(tuple[float, float], gw.support)  # required with a pdf (__post_init__)
+        span = float(support[1]) - float(support[0])
         edges, rows = _tabulated_pdf(gw, span / 8.0)
         sigma = _std(edges, rows) * span / 8.0
         check_finite_positive(sigma, "sigma", "(m, standard deviation of summit heights)")

@@ -1,4 +1,8 @@
 """The result of a rough-surface impact: :class:`RoughImpact`."""
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 from dataclasses import dataclass, field, fields
 
 import numpy as np
@@ -59,22 +63,22 @@ class RoughImpact:
     (2, True)
     """
 
-    V1: np.ndarray
+    V1: float | np.ndarray
     M: float
     unloading: str
-    V1_star: np.ndarray
-    e: np.ndarray
-    loss: np.ndarray
-    d_min: np.ndarray
-    force_max: np.ndarray
-    n_contact: np.ndarray
-    n_yielded: np.ndarray
-    dissipated: np.ndarray
-    energy_in: np.ndarray
-    w_star_max: np.ndarray
+    V1_star: float | np.ndarray
+    e: float | np.ndarray
+    loss: float | np.ndarray
+    d_min: float | np.ndarray
+    force_max: float | np.ndarray
+    n_contact: float | np.ndarray
+    n_yielded: float | np.ndarray
+    dissipated: float | np.ndarray
+    energy_in: float | np.ndarray
+    w_star_max: float | np.ndarray
     kind: str = field(default="explicit")
 
-    def as_dict(self):
+    def as_dict(self) -> dict[str, Any]:
         """The fields as a plain dict (name -> value)."""
         return {f.name: getattr(self, f.name) for f in fields(self)}
 

@@ -4,6 +4,11 @@ The approach solves N E[F] = E (the impact energy over U_c; expectations over th
 from :mod:`.expectations`) for the flat's position zs_d = d/sigma by Newton's method on
 (N E[F])^0.4 with a bracket search; impacts at different speeds run in parallel.
 """
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import numpy as np
 from numba import prange
 
@@ -180,7 +185,7 @@ def _run(n, parallel, serial, *args):
     return serial(*args)
 
 
-def check_resolved(g, energy, where):
+def check_resolved(g: Any, energy: NDArray[np.float64], where: Callable[[int], str]) -> None:
     """Refuse impacts too light for the statistical model to resolve (Gaussian heights).
 
     Parameters
@@ -222,7 +227,7 @@ def check_resolved(g, energy, where):
             f"must be >= {low:.4g}")
 
 
-def hertz_estimate(g, energy, w_cap):
+def hertz_estimate(g: Any, energy: NDArray[np.float64], w_cap: float) -> NDArray[np.float64]:
     """The deepest approach of every impact with all summits Hertzian (no forward table).
 
     Parameters
@@ -260,7 +265,7 @@ def hertz_estimate(g, energy, w_cap):
     return out
 
 
-def solve_impacts(data, g, energy, zs0, w_model):
+def solve_impacts(data: Any, g: Any, energy: NDArray[np.float64], zs0: NDArray[np.float64], w_model: float) -> NDArray[np.float64]:
     """Impacts on a statistical surface under the JG law, with the forward table ``data``.
 
     Parameters

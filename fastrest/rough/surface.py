@@ -1,5 +1,12 @@
 """The user's side of rough surfaces: :class:`RoughSurface` (input checks, then the solvers of
 :mod:`.explicit` and :mod:`.statistical` on forward tables from :mod:`.forward_cache`)."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from ..forward import ForwardData
 import math
 import sys
 
@@ -90,7 +97,8 @@ class RoughSurface:
     True
     """
 
-    def __init__(self, material, R_a, heights=None, gw=None):
+    def __init__(self, material: Material, R_a: float, heights: ArrayLike | None = None,
+                 gw: GreenwoodWilliamson | dict[str, Any] | None = None) -> None:
         if not isinstance(material, Material):
             raise TypeError("material must be a fastrest.Material")
         self.material = material
@@ -112,6 +120,12 @@ class RoughSurface:
             self._init_explicit(heights)
         else:
             self._init_statistical(gw)
+
+    # set by _init_explicit or _init_statistical: one of heights and gw is None
+    kind: str
+    heights: Any
+    gw: Any
+    n_summits: float
 
     def _init_explicit(self, heights):
         z = np.array(as_float_array(heights, "heights"), dtype=np.float64).ravel()
@@ -154,7 +168,7 @@ class RoughSurface:
                 f"psi={self.plasticity_index:.4g})")
 
     @property
-    def plasticity_index(self):
+    def plasticity_index(self) -> float:
         """psi = sqrt(sigma / omega_c) (-): Jackson & Green's form of the Greenwood-Williamson index.
 
         Equal to (E'/H) sqrt(sigma / R_a) with the hardness-like H = (pi/2) C(nu) Sy, since
@@ -170,7 +184,7 @@ class RoughSurface:
         """
         return math.sqrt(self.sigma / self.omega_c)
 
-    def plasticity_index_gw(self, H):
+    def plasticity_index_gw(self, H: float) -> float:
         """Greenwood & Williamson's plasticity index psi = (E'/H) sqrt(sigma / R_a) (-).
 
         Parameters
@@ -199,7 +213,7 @@ class RoughSurface:
         H = float(check_finite_positive(H, "H", "(Pa, hardness)"))
         return self.impact_params.E_eff / H * math.sqrt(self.sigma / self.R_a)
 
-    def params(self):
+    def params(self) -> dict[str, Any]:
         """The arguments that rebuild this surface.
 
         Returns
@@ -223,7 +237,7 @@ class RoughSurface:
             p["gw"] = self.gw
         return p
 
-    def forward(self, unloading="jcg", *, w_max=0.0, extrapolate=False):
+    def forward(self, unloading: str = "jcg", *, w_max: float = 0.0, extrapolate: bool = False) -> ForwardData:
         """The surface's cached forward table: :meth:`fastrest.rough.forward_cache.ForwardCache.get`.
 
         Parameters
@@ -248,7 +262,7 @@ class RoughSurface:
         """
         return self._tables.get(unloading, w_max=w_max, extrapolate=extrapolate)
 
-    def impact(self, V1, M, unloading="jcg", *, extrapolate=False):
+    def impact(self, V1: ArrayLike, M: float, unloading: str = "jcg", *, extrapolate: bool = False) -> RoughImpact:
         """Impact of a rigid flat of mass ``M`` at speed ``V1`` on the surface.
 
         Parameters

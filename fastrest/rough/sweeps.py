@@ -1,9 +1,17 @@
 """Impacts of many rough surfaces: here, or one Dask task per surface (:func:`sweep`)."""
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from .heights import GreenwoodWilliamson
 import math
 
 import numpy as np
 
-from .._validation import as_float_array, check_bool, check_finite_positive
+from .._validation import as_float_array, check_bool, check_finite_positive, warn
 from ..materials import Material
 from ..unloading import unloading_code
 from .common import check_speeds
@@ -18,7 +26,7 @@ __all__ = ["sweep", "surface_from_params", "SweepResults"]
 SURFACE_ERRORS = (ValueError, TypeError, ArithmeticError)
 
 
-class SweepResults(list):
+class SweepResults(list[Any]):
     """The list of :class:`RoughImpact` that :func:`sweep` returns, with the surfaces it could not do.
 
     Parameters
@@ -50,12 +58,12 @@ class SweepResults(list):
     (1, 'ValueError')
     """
 
-    def __init__(self, results=(), errors=None):
+    def __init__(self, results: Iterable[Any] = (), errors: Iterable[tuple[int, BaseException]] | None = None) -> None:
         super().__init__(results)
         self.errors = list(errors or [])
 
     @property
-    def ok(self):
+    def ok(self) -> NDArray[np.bool_]:
         bad = {i for i, _ in self.errors}
         return np.array([i not in bad for i in range(len(self))], dtype=bool)
 
@@ -77,8 +85,9 @@ def _failed(v, m, unloading):
                        kind="failed")
 
 
-def surface_from_params(material=None, R_a=None, heights=None, gw=None, gaussian=None,
-                        E=None, nu=None, Sy=None):
+def surface_from_params(material: Material | None = None, R_a: Any = None, heights: ArrayLike | None = None,
+                        gw: GreenwoodWilliamson | dict[str, Any] | None = None, gaussian: Sequence[Any] | None = None, E: float | None = None,
+                        nu: float | None = None, Sy: float | None = None) -> RoughSurface:
     """Build a :class:`RoughSurface` from plain parameters: the default factory of :func:`sweep`.
 
     Parameters
@@ -150,8 +159,9 @@ def _rebuild_surface(material, R_a, heights=None, gw=None):
     return RoughSurface(material, R_a, heights=heights, gw=gw)
 
 
-def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surface_from_params,
-          client=None, scatter_min=100_000, on_error="report"):
+def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jcg", *, extrapolate: bool = False,
+          factory: Callable[..., RoughSurface] = surface_from_params, client: Any = None, scatter_min: int = 100_000,
+          on_error: str = "report") -> SweepResults:
     """Impacts of many surfaces (or parameter sets) at the speeds ``V1``.
 
     Parameters
@@ -247,7 +257,7 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
         else:
             raise TypeError("surfaces must be RoughSurface objects or dicts of parameters")
     if client is None:
-        out = []
+        out: list[Any] = []
         for s, spec, m in zip(surfaces, specs, masses):
             try:
                 surface = s if isinstance(s, RoughSurface) else factory(**spec)
@@ -281,5 +291,9 @@ def sweep(surfaces, V1, M, unloading="jcg", *, extrapolate=False, factory=surfac
 def _results(out, v, masses, unloading):
     """SweepResults from the per-surface results, where an exception marks a failed surface."""
     errors = [(i, r) for i, r in enumerate(out) if isinstance(r, BaseException)]
+    if errors:
+        i, exc = errors[0]
+        warn(f"{len(errors)} of {len(out)} surfaces failed and have NaN results (the first, surfaces[{i}]: "
+             f"{type(exc).__name__}: {exc}); see the result's .errors and .ok, or on_error='raise'", RuntimeWarning)
     return SweepResults([_failed(v, m, unloading) if isinstance(r, BaseException) else r
                          for r, m in zip(out, masses)], errors)

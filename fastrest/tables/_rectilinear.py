@@ -19,6 +19,7 @@ interpolation in (:func:`v_coordinate` (V1*), eps_y, nu): V1* - 1 up to V1* = 1,
 absolute for e and 1 - e^2, relative for w_m* > 1.
 """
 import json
+from typing import Any
 
 import numpy as np
 
@@ -201,7 +202,7 @@ def measure(grid, n_points=20000, *, seed=2014):
         ref["omega_m"] = sol[0].copy()
         ref[f"e_{_unloading.NAMES[m]}"] = sol[1].copy()
         ref[f"loss_{_unloading.NAMES[m]}"] = sol[2].copy()
-    out = {"n_check": int(v.size)}
+    out: dict[str, Any] = {"n_check": int(v.size)}
     nan = np.zeros(v.size, bool)
     for method, m in (("linear", 2), ("cubic", 4)):
         out[method] = {}
@@ -218,7 +219,7 @@ def measure(grid, n_points=20000, *, seed=2014):
 # --- files ------------------------------------------------------------------------------------
 
 COORDS = {
-    "v1_star": ("1", "normalised impact speed V1* = V1/V_c (JGM eq 28); V1* <= 1 is elastic (e = 1, "
+    "v1_star": ("1", "normalised impact speed V1* = V1/V_c (JGM eq 30); V1* <= 1 is elastic (e = 1, "
                      "w_m* = V1*^0.8)"),
     "eps_y": ("1", "yield strain eps_y = Sy/E' (JGM eq 11)"),
     "nu": ("1", "Poisson's ratio of the yielding material"),

@@ -22,6 +22,13 @@ no relative error bound at its zero: its error is taken relative to max(abs(1 - 
 tolerance ``tol`` is ``tol / 10`` absolute where abs(1 - e^2) <= 0.1 (around the zero) and ``tol``
 relative above (the default table: 1e-10 absolute, 1e-9 relative).
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
+# ``table`` parameters are Tables, typed Any: this module sits below fastrest.tables.table, and
+# imports point down even for types (tests/test_layering.py).
+_Table = Any
 import math
 
 import numpy as np
@@ -87,7 +94,8 @@ def _materials(g, n_random, rng):
 
 
 @keyword_only("n_random_materials", "n_random_speeds", "seed")
-def adversarial_points(table, *, n_random_materials=24, n_random_speeds=16, seed=2026):
+def adversarial_points(table: _Table, *, n_random_materials: int = 24, n_random_speeds: int = 16,
+                       seed: int = 2026) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The sample a table's error is measured on: what random points miss, and random points.
 
     Parameters
@@ -136,7 +144,7 @@ def adversarial_points(table, *, n_random_materials=24, n_random_speeds=16, seed
     return np.concatenate(v), np.concatenate(e), np.concatenate(n)
 
 
-def sample_points(grid, n_points, seed):
+def sample_points(grid: dict[str, Any], n_points: int, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Test points over a table's domain: random plus hard cases (bench/table_details.py).
 
     Parameters
@@ -216,8 +224,9 @@ def _project(table, lnv, eps, nu):
 
 
 @keyword_only("starts", "min_step", "max_iterations")
-def local_search(table, v, e, n, err, floored, *, starts=LOCAL_STARTS, min_step=LOCAL_MIN_STEP,
-                 max_iterations=LOCAL_ITERATIONS):
+def local_search(table: _Table, v: NDArray[np.float64], e: NDArray[np.float64], n: NDArray[np.float64], err: NDArray[np.float64], floored: Any, *,
+                 starts: int = LOCAL_STARTS, min_step: float = LOCAL_MIN_STEP,
+                 max_iterations: int = LOCAL_ITERATIONS) -> Any:
     """Local maxima of each quantity's error, climbed from the worst points of a sample.
 
     Parameters
@@ -269,7 +278,7 @@ def local_search(table, v, e, n, err, floored, *, starts=LOCAL_STARTS, min_step=
           (g["nu_max"] - g["nu_min"]) / (8.0 * max(g["n_nu"] - 1, 1)))
     jobs = []  # [q, lnv, eps, nu, value, scale]
     for q in range(nq):
-        seen = set()
+        seen: set[Any] = set()
         for i in np.argsort(-err[q], kind="stable"):
             if len(seen) == starts or not (math.isfinite(err[q, i]) and err[q, i] > 0.0):
                 break
@@ -314,7 +323,8 @@ def local_search(table, v, e, n, err, floored, *, starts=LOCAL_STARTS, min_step=
 
 
 @keyword_only("search")
-def measure(table, points=None, *, search=True):
+def measure(table: _Table, points: tuple[ArrayLike, ArrayLike, ArrayLike] | None = None, *,
+            search: bool = True) -> dict[str, dict[str, Any]]:
     """Worst error of every quantity of a table against the direct solver.
 
     Parameters
@@ -380,7 +390,7 @@ def measure(table, points=None, *, search=True):
     return out
 
 
-def meets(errors, tol):
+def meets(errors: dict[str, dict[str, Any]], tol: float) -> bool:
     """Whether every quantity's measured error is within ``tol`` (in its metric).
 
     Parameters
@@ -402,7 +412,7 @@ def meets(errors, tol):
     return all(d["max_error"] <= tol for d in errors.values())
 
 
-def worst(errors, tol):
+def worst(errors: dict[str, dict[str, Any]], tol: float | None) -> tuple[str, float, float | None]:
     """The quantity with the largest measured error.
 
     Parameters
@@ -426,7 +436,7 @@ def worst(errors, tol):
     return name, errors[name]["max_error"], tol
 
 
-def warn_if_inaccurate(errors, tol, where):
+def warn_if_inaccurate(errors: dict[str, dict[str, Any]] | None, tol: float | None, where: str) -> None:
     """Warn if a table's stored measured error exceeds a tolerance.
 
     Parameters

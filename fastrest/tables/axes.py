@@ -9,6 +9,10 @@
 Axes are computed with the math module's scalar exp and log: NumPy's vectorised ones differ in the
 last bit between CPU instruction sets, and the table must be bit-reproducible.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 import math
 from dataclasses import dataclass
 
@@ -26,7 +30,7 @@ __all__ = ["Block", "xi_range", "c_eps_y_of_xi", "nu_axis", "energy_eps_y_axis",
            "eps_y_blocks", "v1_star_top"]
 
 
-def xi_range(g):
+def xi_range(g: dict[str, Any]) -> tuple[float, float]:
     """The range of the mapped material axis xi of a grid.
 
     Parameters
@@ -57,7 +61,7 @@ def xi_range(g):
     return (math.expm1(k * lo) / k, math.expm1(k * hi) / k) if k > 0 else (lo, hi)
 
 
-def c_eps_y_of_xi(xi, k):
+def c_eps_y_of_xi(xi: ArrayLike, k: float) -> NDArray[np.float64]:
     """C(nu) eps_y at mapped positions xi: the inverse of the map of :func:`xi_range`.
 
     Parameters
@@ -83,7 +87,7 @@ def c_eps_y_of_xi(xi, k):
     return np.array([math.log1p(k * x) / k for x in xi.ravel()]).reshape(xi.shape)
 
 
-def nu_axis(g):
+def nu_axis(g: dict[str, Any]) -> NDArray[np.float64]:
     """The nu nodes (-) of a grid: ``n_nu`` uniform nodes from ``nu_min`` to ``nu_max``.
 
     Parameters
@@ -99,7 +103,7 @@ def nu_axis(g):
     return np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
 
 
-def energy_eps_y_axis(g):
+def energy_eps_y_axis(g: dict[str, Any]) -> NDArray[np.float64]:
     """The plain eps_y nodes (-) of a grid's stored W* and ``v1_star_max``: ``n_eps_y_energy`` uniform
     nodes from ``eps_y_min`` to ``eps_y_max``.
 
@@ -116,7 +120,7 @@ def energy_eps_y_axis(g):
     return np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y_energy"])
 
 
-def v1_star_top(g):
+def v1_star_top(g: dict[str, Any]) -> float:
     """The largest V1* (-) a table of grid ``g`` holds.
 
     The largest w_m* = 425 speed (:func:`fastrest.limit`, JGM section 3.3) over the
@@ -139,7 +143,7 @@ def v1_star_top(g):
                for e, n in zip(eps.ravel(), np.broadcast_to(nus, eps.shape).ravel()))
 
 
-def omega_axis():
+def omega_axis() -> NDArray[np.float64]:
     """The w* nodes (-) of the stored W*: :data:`OMEGA_GRID_HERTZ` uniform on [0, 1.9], then
     :data:`OMEGA_GRID_JG` geometric on (1.9, 425] (math.exp: bit-reproducible).
 
@@ -163,7 +167,7 @@ def _geomspace(a, b, n):
     return out
 
 
-def cell_layout(g, v_top):
+def cell_layout(g: dict[str, Any], v_top: float) -> Any:
     """The V1* cells of a table over (1.9^1.25, v_top].
 
     Parameters
@@ -223,10 +227,10 @@ class Block:
     cstop: int
     n: int
     c_eps_y: np.ndarray
-    values: np.ndarray = None
+    values: np.ndarray | None = None
 
 
-def eps_y_blocks(g, edges):
+def eps_y_blocks(g: dict[str, Any], edges: NDArray[np.float64]) -> list[Block]:
     """The non-empty blocks of V1* cells of a grid, each with its own material axis.
 
     Parameters

@@ -1,5 +1,11 @@
 """The Numba-friendly form of a table, :class:`TableData`, built by keyword in one place
 (:func:`table_data`); :mod:`fastrest.tables.kernel` evaluates it."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+from numpy.typing import ArrayLike, NDArray
+if TYPE_CHECKING:
+    from .generation import GeneratedTable
 from collections import namedtuple
 
 import numpy as np
@@ -81,7 +87,7 @@ def _hertz_table_rows(n_models):
     return np.ascontiguousarray(np.concatenate([rows[0][0]] + [r[k] for r in rows for k in (1, 2)]))
 
 
-def table_data(gen):
+def table_data(gen: GeneratedTable) -> TableData:
     """The :class:`TableData` of a table's arrays (the one place it is built, by keyword).
 
     Parameters

@@ -1,5 +1,10 @@
 """The default-table fast API: :func:`omega_m_star`, :func:`e_star`, :func:`loss_star` (also
 ``fastrest.omega_m_star`` etc.), each point with its own material, from the shipped table."""
+from __future__ import annotations
+
+from typing import overload
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from .store import _load_table, load_table  # noqa: F401 (load_table: the docstrings)
 
 __all__ = ["omega_m_star", "e_star", "loss_star"]
@@ -8,7 +13,7 @@ _TOP_DOC = """{what}, from the shipped default table.
 
     Each point may have its own material. Interpolates the table of :func:`load_table` (accuracy:
     ``load_table().attrs["measured_error"]``, or ``fastrest info``; for the shipped table <= 1e-9 relative,
-    except the Etsion 1 - e^2 near its zero crossing, see the README). For one material
+    except the Etsion 1 - e^2 near its zero crossing, see docs/domain.md). For one material
     :func:`fastrest.curve` is faster and more accurate; :mod:`fastrest.direct` is the exact solver.
 
     Parameters
@@ -54,16 +59,34 @@ _UNLOADING_DOC = """
         Unloading model: Jackson-Chusoipin-Green, JGM eq (35) (default), Etsion et al., eq (33), or Brake (2015)."""
 
 
-def omega_m_star(v1_star, eps_y, nu):
-    return _load_table().omega_m_star(v1_star, eps_y, nu)
+@overload
+def omega_m_star(v1_star: float, eps_y: float, nu: float) -> float: ...
+@overload
+def omega_m_star(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]: ...
 
 
-def e_star(v1_star, eps_y, nu, unloading="jcg"):
-    return _load_table().e_star(v1_star, eps_y, nu, unloading)
+def omega_m_star(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
+    return _load_table().omega_m(v1_star, eps_y, nu)
 
 
-def loss_star(v1_star, eps_y, nu, unloading="jcg"):
-    return _load_table().loss_star(v1_star, eps_y, nu, unloading)
+@overload
+def e_star(v1_star: float, eps_y: float, nu: float, unloading: str = "jcg") -> float: ...
+@overload
+def e_star(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg") -> float | NDArray[np.float64]: ...
+
+
+def e_star(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg") -> float | NDArray[np.float64]:
+    return _load_table().e(v1_star, eps_y, nu, unloading)
+
+
+@overload
+def loss_star(v1_star: float, eps_y: float, nu: float, unloading: str = "jcg") -> float: ...
+@overload
+def loss_star(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg") -> float | NDArray[np.float64]: ...
+
+
+def loss_star(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg") -> float | NDArray[np.float64]:
+    return _load_table().loss(v1_star, eps_y, nu, unloading)
 
 
 omega_m_star.__doc__ = _TOP_DOC.format(

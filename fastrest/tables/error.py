@@ -9,6 +9,10 @@ each block of V1* cells whose error is too large gets more nodes in C(nu) eps_y 
 6-point stencil falls like h^6); where that stopped helping, finer V1* cells (the fine region
 extended, if the worst point lies just above it), then more nodes in nu, then more cells per octave.
 """
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
 import math
 
 from .._deprecation import keyword_only
@@ -23,7 +27,8 @@ __all__ = ["AccuracyWarning", "DEFAULT_TOL", "SAFETY", "SIGN_CHANGE_FLOOR", "adv
 
 
 @keyword_only("max_rounds", "progress", "log")
-def build_to_tolerance(grid, tol, *, max_rounds=5, progress=False, log=None):
+def build_to_tolerance(grid: dict[str, Any] | None, tol: float, *, max_rounds: int = 5, progress: Any = False,
+                       log: Callable[[str], object] | None = None) -> tuple[Any, ...]:
     """Generate a table, refining its node counts until its measured error meets a tolerance.
 
     Parameters
@@ -61,7 +66,7 @@ def build_to_tolerance(grid, tol, *, max_rounds=5, progress=False, log=None):
     """
     g = normalise_grid(grid)
     target = tol * SAFETY
-    prev = None
+    prev: list[float] | None = None
     for rnd in range(max_rounds + 1):
         gen = generate(g, progress=progress)
         table = Table(gen)
@@ -103,7 +108,8 @@ def build_to_tolerance(grid, tol, *, max_rounds=5, progress=False, log=None):
                 g = normalise_grid(g, n_nu=g["n_nu"] + 2)
             else:
                 g = normalise_grid(g, bits_per_octave=min(10, g["bits_per_octave"] + 1))
-            ratio = None
+            prev = None
+            continue
         prev = ratio
     name, err, lim = worst(errors, target)
     d = errors[name]

@@ -20,6 +20,10 @@ size, no blocking on a FIFO), :func:`check_target` (only a regular file or a new
 replaced, checked before anything is computed or created) and :func:`replace_files` (atomic:
 temporary files beside the targets, fsync, rename; OSError naming the file on a full disk).
 """
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
 import errno
 import hashlib
 import os
@@ -59,7 +63,7 @@ class TableFileError(ValueError):
     """
 
 
-def header(body_digest, size):
+def header(body_digest: str, size: int) -> bytes:
     """The 512-byte user block of a table file (docs/table-format.md, section 1.0).
 
     Parameters
@@ -99,7 +103,7 @@ def _check_regular(st, path, max_bytes, error, what):
         raise error(f"{path}: {st.st_size} bytes, larger than the {max_bytes} bytes a {what} may have")
 
 
-def check_path(path, name="path"):
+def check_path(path: Any, name: str = "path") -> str:
     """``path`` as a str.
 
     Parameters
@@ -134,7 +138,8 @@ def check_path(path, name="path"):
     return p
 
 
-def read_bounded(path, max_bytes, error=TableFileError, what="table file"):
+def read_bounded(path: str | os.PathLike[str], max_bytes: int, error: type[Exception] = TableFileError,
+                 what: str = "table file") -> bytes:
     """The bytes of a regular file of at most ``max_bytes``, read without blocking on a FIFO.
 
     Parameters
@@ -196,7 +201,7 @@ def read_bounded(path, max_bytes, error=TableFileError, what="table file"):
     return b"".join(parts)
 
 
-def read_verified(path):
+def read_verified(path: str | os.PathLike[str]) -> tuple[bytes, str]:
     """The bytes of a table file after checking its header, size and SHA-256 digest.
 
     Parameters
@@ -301,14 +306,21 @@ def _target(path, name):
         raise ValueError(f"{name} = {path!r} holds a NUL byte")
     if os.path.basename(path) in ("", ".", ".."):
         raise ValueError(f"{name} = {path!r} is not a file name")
+    if os.path.islink(path):
+        # a link is written through, as it is read through: the file written is its target (whose
+        # kind and directory are then checked); the link itself is never replaced
+        path = os.path.realpath(path)
     return path
 
 
-def check_target(path, name="path", what="the file", parents=False):
+def check_target(path: str | os.PathLike[str], name: str = "path", what: str = "the file",
+                 parents: bool = False) -> str | os.PathLike[str]:
     """Refuse, before anything is written or computed, a target that fastrest must not replace.
 
     Every writer of fastrest (tables, the cache, exports, figures) calls this first and writes
-    with :func:`replace_files`, which checks again just before the rename.
+    with :func:`replace_files`, which checks again just before the rename. A symbolic link is
+    followed: the file checked and written is its final target (a dangling link's target is a new
+    path, written if its directory exists), and the link itself stays a link.
 
     Parameters
     ----------
@@ -355,7 +367,8 @@ def check_target(path, name="path", what="the file", parents=False):
     return path
 
 
-def check_target_dir(path, name="path", what="the directory"):
+def check_target_dir(path: str | os.PathLike[str], name: str = "path",
+                     what: str = "the directory") -> str | os.PathLike[str]:
     """Refuse a directory to write into unless it is one, or can be created (nothing is created).
 
     Parameters
@@ -406,7 +419,7 @@ def _check_parents(d, path, what):
     _probe_dir(d, path, what)
 
 
-def new_file_mode(path):
+def new_file_mode(path: str | os.PathLike[str]) -> int:
     """Permission bits for a file written at ``path``.
 
     Parameters
@@ -433,7 +446,8 @@ def new_file_mode(path):
         return 0o666 & ~umask
 
 
-def replace_files(contents, name="path", what="the file", mode=None):
+def replace_files(contents: Mapping[Any, bytes | memoryview], name: str = "path", what: str = "the file",
+                  mode: int | None = None) -> list[str | os.PathLike[str]]:
     """Write files atomically: each to a temporary file beside it, all fsynced, then renamed.
 
     Parameters
@@ -500,7 +514,7 @@ def replace_files(contents, name="path", what="the file", mode=None):
     return paths
 
 
-def write_atomic(path, image, mode=None):
+def write_atomic(path: str | os.PathLike[str], image: bytes | memoryview, mode: int | None = None) -> str:
     """Write a table file's bytes atomically (:func:`replace_files`) with its :func:`header`.
 
     Parameters

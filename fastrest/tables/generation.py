@@ -6,6 +6,10 @@ of each material at increasing V1* by Newton's method marching from one speed to
 The arrays travel in a :class:`GeneratedTable`, from which a :class:`~fastrest.tables.Table` is
 built and a table file written.
 """
+from __future__ import annotations
+
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 from dataclasses import dataclass, replace
 
 import numba as nb
@@ -71,7 +75,7 @@ class GeneratedTable:
     ((32, 8, 256), 4)
     """
 
-    grid: dict
+    grid: dict[str, Any]
     eps_y: np.ndarray
     nu: np.ndarray
     v_top: float
@@ -79,7 +83,7 @@ class GeneratedTable:
     base: int
     edges: np.ndarray
     nodes: np.ndarray
-    blocks: tuple
+    blocks: tuple[Any, ...]
     omega_star: np.ndarray
     W_star: np.ndarray
     v1_star_max: np.ndarray
@@ -188,7 +192,7 @@ def _progress(jobs, progress):
 
 
 @keyword_only("progress")
-def generate(grid=None, *, progress=None):
+def generate(grid: dict[str, Any] | None = None, *, progress: Any = None) -> GeneratedTable:
     """Compute a table's arrays (no I/O).
 
     Parameters
@@ -219,7 +223,7 @@ def generate(grid=None, *, progress=None):
     >>> from fastrest.tables import Table, generate
     >>> g = generate(dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=6, nu_min=0.3, nu_max=0.35,
     ...                   n_nu=6, bits_per_octave=1, eps_y_blocks=[], n_eps_y_energy=6), progress=False)
-    >>> round(Table(g).e_star(5.0, 0.005, 0.33), 4)
+    >>> round(Table(g).e(5.0, 0.005, 0.33), 4)
     0.8981
     """
     g = normalise_grid(grid)

@@ -11,6 +11,11 @@ validates it before anything is allocated; :mod:`fastrest.tables.axes` turns it 
 * V1*: bit-indexed cells, finer below ``fine_v1_star_max``;
 * w* of the stored W*, on a plain eps_y axis of ``n_eps_y_energy`` nodes.
 """
+from __future__ import annotations
+
+from typing import Any, overload
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
 import hashlib
 import json
 import math
@@ -51,7 +56,7 @@ OMEGA_GRID_JG = 236
 #: mapped C(nu) eps_y and the top octaves 85 (the law's cos(pi a/R) term varies fastest near
 #: w* = 425), 8 nodes in nu, 2^4 cells per octave up to V1* = 16 (the Etsion and Brake 1 - e^2 near
 #: V1* = 8-16 and just above the switch). W* is stored on its own plain-eps_y grid (n_eps_y_energy).
-DEFAULT_GRID = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=85,
+DEFAULT_GRID: dict[str, Any] = dict(eps_y_min=EPS_Y_VALIDATED[0], eps_y_max=EPS_Y_VALIDATED[1], n_eps_y=85,
                     nu_min=NU_VALIDATED[0], nu_max=NU_VALIDATED[1], n_nu=8, bits_per_octave=3,
                     fine_bits_per_octave=4, fine_v1_star_max=16.0, c_eps_y_map_rate=30.0,
                     eps_y_blocks=[[128.0, 28], [256.0, 32], [512.0, 47]], n_eps_y_energy=32)
@@ -67,7 +72,7 @@ MAP_RATE_MAX = 1000.0
 TABLE_BYTES_MAX = 4 * 2**30
 
 
-def normalise_grid(grid=None, **overrides):
+def normalise_grid(grid: dict[str, Any] | None = None, **overrides: Any) -> dict[str, Any]:
     """Fill in the defaults of a grid specification and validate it.
 
     Parameters
@@ -103,7 +108,7 @@ def normalise_grid(grid=None, **overrides):
     """
     if grid is not None and not isinstance(grid, dict):
         raise TypeError(f"grid must be a dict of grid parameters or None, got {type(grid).__name__}")
-    g = dict(DEFAULT_GRID)
+    g: dict[str, Any] = dict(DEFAULT_GRID)
     g.update(grid or {})
     g.update(overrides)
     unknown = set(g) - set(DEFAULT_GRID)
@@ -148,7 +153,7 @@ def normalise_grid(grid=None, **overrides):
 def _normalise_blocks(blocks):
     """eps_y_blocks: [[V1*_end, n], ...]: cells ending at or below V1*_end (a power of two,
     increasing) use n nodes in the mapped C(nu) eps_y (>= the stencil's 6); the rest n_eps_y."""
-    out = []
+    out: list[Any] = []
     if isinstance(blocks, (str, bytes, bytearray)) or (blocks and not isinstance(blocks, (list, tuple))):
         raise TypeError(f"eps_y_blocks must be a list of [V1*_end, n_eps_y] pairs; got {blocks!r}")
     try:
@@ -167,7 +172,7 @@ def _normalise_blocks(blocks):
     return out
 
 
-def grid_key(grid):
+def grid_key(grid: dict[str, Any]) -> str:
     """The cache key of a grid: the file format version and a hash of the generation parameters.
 
     Parameters
@@ -195,7 +200,13 @@ def grid_key(grid):
     return f"v{FORMAT_VERSION}-{hashlib.sha256(blob.encode()).hexdigest()[:16]}"
 
 
-def c_eps_y(eps_y, nu):
+@overload
+def c_eps_y(eps_y: float, nu: float) -> float: ...
+@overload
+def c_eps_y(eps_y: ArrayLike, nu: ArrayLike) -> NDArray[np.float64]: ...
+
+
+def c_eps_y(eps_y: Any, nu: Any) -> float | NDArray[np.float64]:
     """C(nu) eps_y, the table's first material axis (-).
 
     a/R = (pi/2) C(nu) eps_y sqrt(A*) (JGM eqs 5, 12): the law depends on eps_y mostly through

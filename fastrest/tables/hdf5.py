@@ -23,6 +23,11 @@ Files are built in memory and written to a temporary file beside the target, whi
 over it, so a reader sees either the old table or the new one, never a half-written file, and a
 full disk gives an OSError naming the file. The reader is :mod:`fastrest.tables.hdf5_read`.
 """
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+from numpy.typing import ArrayLike, NDArray
 from dataclasses import dataclass, field
 import hashlib
 import io
@@ -84,17 +89,18 @@ class FileContents:
     ('eps_y', 'nu', 'omega_star')
     """
 
-    axes: dict
-    datasets: dict
-    attrs: dict
-    units: dict
+    axes: dict[str, Any]
+    datasets: dict[str, Any]
+    attrs: dict[str, Any]
+    units: dict[str, Any]
     path: str
-    dims: dict = field(default_factory=dict)
-    long_names: dict = field(default_factory=dict)
+    dims: dict[str, Any] = field(default_factory=dict)
+    long_names: dict[str, Any] = field(default_factory=dict)
     digest: str = ""
 
 
-def write_table(path, axes, datasets, attrs):
+def write_table(path: str | os.PathLike[str], axes: dict[str, Any], datasets: dict[str, Any],
+                attrs: dict[str, Any]) -> str:
     """Write a table to an HDF5 file, atomically.
 
     Parameters
@@ -161,7 +167,7 @@ def write_table(path, axes, datasets, attrs):
     # (h5py closing a file after a failed write, e.g. on a full disk, segfaulted).
     buffer = io.BytesIO()
     with h5py.File(buffer, "w", userblock_size=USERBLOCK) as f:
-        scales = {}
+        scales: dict[str, Any] = {}
         for name in sorted(axes):
             values, units, long_name = axes[name]
             scales[name] = write_variable(f, name, values, units, long_name)
@@ -273,7 +279,7 @@ def _json_default(value):
     raise TypeError(f"cannot store {value!r} in a JSON attribute")
 
 
-def checksum_arrays(arrays):
+def checksum_arrays(arrays: Mapping[str, NDArray[Any]]) -> str:
     """The ``checksum`` attribute: SHA-256 over the name, dtype, shape and bytes of every array.
 
     Parameters
@@ -308,7 +314,7 @@ def checksum_arrays(arrays):
     return digest.hexdigest()
 
 
-def write_variable(f, name, values, units, long_name):
+def write_variable(f: Any, name: str, values: NDArray[Any], units: str, long_name: str) -> Any:
     """Create one contiguous, uncompressed dataset at the root of an open file, with its CF attributes.
 
     Parameters

@@ -7,6 +7,9 @@ file); every object is checked (datasets only, no links, no virtual or external 
 or integer data inside the file, bounded attributes) before any array is allocated. The layout is
 :mod:`fastrest.tables.hdf5`.
 """
+from __future__ import annotations
+
+from typing import Any
 from dataclasses import replace
 import itertools
 import json
@@ -29,7 +32,7 @@ _MAX_ATTRS = 64
 _IMAGE_IDS = itertools.count()
 
 
-def read_table(path):
+def read_table(path: str | os.PathLike[str]) -> FileContents:
     """Read a table file written by `write_table` into memory.
 
     The file is read with plain reads and verified (regular file, size, SHA-256 digest of its
@@ -89,7 +92,7 @@ def _open_image(data):
     return h5py.File(h5py.h5f.open(name, h5py.h5f.ACC_RDONLY, fapl=fapl))
 
 
-def parse_image(data, path):
+def parse_image(data: bytes, path: str | os.PathLike[str]) -> FileContents:
     """Parse a table file's bytes with HDF5, from memory, checking every object before reading it.
 
     Parameters
@@ -129,7 +132,7 @@ def parse_image(data, path):
                              f"table): {type(exc).__name__}: {exc}") from exc
 
 
-def walk_image(data):
+def walk_image(data: bytes) -> Any:
     """Visit every object of a table file's bytes and read every attribute and dataset (the check
     process runs this after :func:`parse_image` accepted the bytes, which bounds every size).
 
@@ -190,6 +193,11 @@ def _read_open_file(f, path, limit):
     names = list(f)
     if len(names) > _MAX_OBJECTS:
         raise TableFileError(f"{path}: {len(names)} objects, more than a table holds ({_MAX_OBJECTS})")
+    axes: dict[str, Any]
+    datasets: dict[str, Any]
+    units: dict[str, Any]
+    long_names: dict[str, Any]
+    dims: dict[str, Any]
     axes, datasets, units, long_names, dims = {}, {}, {}, {}, {}
     for name in names:
         obj = _checked_dataset(f, name, path, limit)

@@ -22,7 +22,7 @@ from llvmlite import ir
 from numba.core import types
 from numba.extending import intrinsic
 
-from .._jit import jit
+from .._jit import fmul_rn, is_cuda, jit, mul_rn
 from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
 from ..contact import omega_star_limit_kernel
 from ..critical import c_of_nu
@@ -57,7 +57,7 @@ def _first_node(pos, m, n):
 @jit(inline=True)
 def _lagrange6(x, x0, inv_h, n):
     """First index and weights of the 6-node Lagrange stencil at x on a uniform grid."""
-    pos = (x - x0) * inv_h
+    pos = mul_rn(x - x0, inv_h)  # mul_rn: pos - i is not fused on CUDA either (fastrest._jit)
     i = _first_node(pos, 6, n)
     t = pos - i
     t1, t2, t3, t4, t5 = t - 1.0, t - 2.0, t - 3.0, t - 4.0, t - 5.0
@@ -155,7 +155,7 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
     if not v <= v_top:
         return np.nan
     cell = two_level_index(v, split[0], split[1], split[2], split[3], split[4])
-    u = (v - cells[2 * cell]) * cells[2 * cell + 1]
+    u = mul_rn(v - cells[2 * cell], cells[2 * cell + 1])  # u + 1.0 below: not fused on CUDA either
     c_eps_y = c_of_nu(nu) * eps_y
     xi = math.expm1(map_rate * c_eps_y) / map_rate if map_rate > 0.0 else c_eps_y
     b = cell_block[cell]
@@ -181,7 +181,7 @@ def _interpolate(tab, q, v, eps_y, nu, check_limit):
                 val = x
             else:  # smoothstep from the previous block's grid (left edge) to this block's (right)
                 t = min(max(0.5 * (u + 1.0), 0.0), 1.0)
-                val = x + t * t * (3.0 - 2.0 * t) * (val - x)
+                val = x + mul_rn(t * t * (3.0 - mul_rn(2.0, t)), val - x)
         if check and qq == 0 and not val <= w_lim:
             return np.nan
         r = val
@@ -244,6 +244,8 @@ def stencil_coefficients(typingctx, coef, first, row, we, wn):
     ``for a: for b: w = we[a] * wn[b]; c_k += w * p_ab[k]`` (a multiply, then an add: fused ones
     lengthen the dependency chain, measured ~10 % slower), with the six k in vector lanes (4 + 2):
     the same numbers as that loop, a third of the instructions (``python -m bench.stencil``).
+    On CUDA the same sums one coefficient at a time, each product rounded on its own
+    (``mul.rn.f64``: not fused into the addition, so the same numbers again; ``fastrest._jit``).
     Callable from jitted code only.
     """
     f64 = types.float64
@@ -258,6 +260,18 @@ def stencil_coefficients(typingctx, coef, first, row, we, wn):
         i64 = ir.IntType(64)
         first_ = context.cast(builder, first_, signature.args[1], types.int64)
         row_ = context.cast(builder, row_, signature.args[2], types.int64)
+        if is_cuda(builder):  # the same sums, one coefficient at a time, products never fused
+            acc = [ir.Constant(ir.DoubleType(), 0.0)] * 6
+            for a in range(STENCIL_EPS):
+                ea = builder.extract_value(we_, a)
+                start = builder.add(first_, builder.mul(row_, ir.Constant(i64, a)))
+                for b in range(STENCIL_NU):
+                    w = builder.fmul(ea, builder.extract_value(wn_, b))
+                    node = builder.add(start, ir.Constant(i64, 6 * b))
+                    for k in range(6):
+                        x = builder.load(builder.gep(p, [builder.add(node, ir.Constant(i64, k))]), align=8)
+                        acc[k] = builder.fadd(acc[k], fmul_rn(builder, w, x))
+            return context.make_tuple(builder, signature.return_type, acc)
         lanes = (4, 2)  # lanes of coefficients 0-3 and 4-5
         acc = [ir.Constant(ir.VectorType(ir.DoubleType(), n), [0.0] * n) for n in lanes]
         for a in range(STENCIL_EPS):

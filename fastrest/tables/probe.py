@@ -16,6 +16,9 @@ the table file changes its digest, so the file alone cannot forge it), and the d
 this process wrote itself. A check that passed is remembered per process by digest (the same bytes
 wherever they are): it costs once.
 """
+from __future__ import annotations
+
+from typing import Any
 import os
 import signal
 import subprocess
@@ -31,12 +34,12 @@ CHECK_TIMEOUT = 60.0
 #: SHA-256 digests parsed in-process without a check: the shipped table's and those this process wrote.
 TRUSTED = set()
 #: Digests whose check passed in this process.
-CHECKED = set()
+CHECKED: set[str] = set()
 
 try:
     from ._default_digest import SHA256 as _DEFAULT
 except ImportError:  # a checkout before the digest was recorded: the shipped table is checked too
-    _DEFAULT = None
+    _DEFAULT = None  # type: ignore[assignment]  # the module is absent in that case
 if _DEFAULT:
     TRUSTED.add(_DEFAULT)
 
@@ -62,7 +65,7 @@ sys.stdout.write("ok")
 """
 
 
-def trust(digest):
+def trust(digest: str) -> None:
     """Parse files with this SHA-256 digest in-process from now on (a file this process wrote).
 
     Parameters
@@ -79,7 +82,7 @@ def trust(digest):
     TRUSTED.add(digest)
 
 
-def check_image(data, digest, path):
+def check_image(data: bytes, digest: str, path: str | os.PathLike[str]) -> None:
     """Refuse a table file's bytes that crash, hang or fail HDF5 in a check process.
 
     Parameters

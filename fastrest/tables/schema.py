@@ -1,6 +1,10 @@
 """The mapping between a table's arrays (:class:`~fastrest.tables.generation.GeneratedTable`) and the
 axes, datasets and attributes of its file (docs/table-format.md), with the checks that tie a read
 file's arrays to its grid before anything sized by the file is allocated."""
+from __future__ import annotations
+
+import os
+from typing import Any
 import numpy as np
 
 from .. import unloading as _unloading
@@ -37,7 +41,7 @@ MAX_NODES = 100000
 MAX_V1_STAR_TOP = 2.0**20
 
 
-def write_generated(gen, path, errors=None):
+def write_generated(gen: GeneratedTable, path: str | os.PathLike[str], errors: dict[str, dict[str, Any]] | None = None) -> str:
     """Write a table's arrays to a table file, atomically (docs/table-format.md).
 
     Parameters
@@ -116,7 +120,7 @@ def write_generated(gen, path, errors=None):
     return write_table(path, axes, datasets, attrs)
 
 
-def read_generated(path):
+def read_generated(path: str | os.PathLike[str]) -> tuple[GeneratedTable, dict[str, Any]]:
     """Read a table file into its arrays and root attributes.
 
     Parameters

@@ -1,5 +1,8 @@
 """Table files in use: the shipped default table, the user cache, building, reading and the
 per-process registry of loaded tables."""
+from __future__ import annotations
+
+from typing import Any
 import os
 import warnings
 from pathlib import Path
@@ -19,11 +22,11 @@ __all__ = ["LOADED", "default_table_path", "source_tree_table_path", "cache_dir"
 
 #: Tables loaded in this process (documented internal; tests empty it): None (the shipped table)
 #: or a resolved path -> (file identity (st_dev, st_ino, st_mtime_ns, st_size) or None, Table).
-LOADED = {}
+LOADED: dict[Any, Any] = {}
 _HERE = Path(__file__).resolve().parent
 
 
-def default_table_path():
+def default_table_path() -> Path:
     """The shipped default table, ``fastrest/tables/default.h5`` (package data).
 
     Returns
@@ -49,7 +52,7 @@ def default_table_path():
     return p
 
 
-def source_tree_table_path():
+def source_tree_table_path() -> Path | None:
     """Where ``fastrest build --default`` writes.
 
     Returns
@@ -71,7 +74,7 @@ def source_tree_table_path():
     return None
 
 
-def cache_dir():
+def cache_dir() -> Path:
     """The user cache for tables of other grids.
 
     Returns
@@ -99,7 +102,7 @@ def _check_tol(tol):
     return tol
 
 
-def read(path):
+def read(path: str | os.PathLike[str]) -> Table:
     """Read a table file into a new :class:`Table` (no registry: see :func:`load_table`).
 
     Parameters
@@ -130,7 +133,7 @@ def read(path):
     return Table(gen, attrs=attrs, path=path)
 
 
-def forget(path=None):
+def forget(path: str | os.PathLike[str] | None = None) -> None:
     """Drop the registry's entries for a file, so that the next :func:`load_table` reads it again.
 
     Parameters
@@ -172,7 +175,7 @@ def _resolved(path):
 
 
 @keyword_only("tol")
-def load_table(path=None, *, tol=None):
+def load_table(path: str | os.PathLike[str] | None = None, *, tol: float | None = None) -> Table:
     """Load a restitution table once per process and return it.
 
     The file is read into NumPy arrays and closed; later calls with the same path return the same
@@ -240,7 +243,8 @@ def _load_table(path=None, tol=None):
 
 
 @keyword_only("progress", "measure", "tol")
-def build(path=None, grid=None, *, progress=None, measure=True, tol=None):
+def build(path: str | os.PathLike[str] | None = None, grid: dict[str, Any] | None = None, *, progress: Any = None, measure: bool = True,
+          tol: float | None = None) -> Table:
     """Generate a table, measure its error against the direct solver, write it; return the Table.
 
     Parameters
@@ -335,7 +339,7 @@ def _record_default_digest(digest):
 
 
 @keyword_only("progress", "tol")
-def cached_table(grid=None, *, progress=None, tol=None):
+def cached_table(grid: dict[str, Any] | None = None, *, progress: Any = None, tol: float | None = None) -> Table:
     """A table for any grid: the shipped one if it matches, else the user cache, built on first use.
 
     Parameters

@@ -1,9 +1,15 @@
 """The :class:`Table` object: a loaded multi-material table and its checked Python API."""
+from __future__ import annotations
+
+import os
+from typing import TYPE_CHECKING, Any, NoReturn, overload
+
 import numba as nb
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .. import unloading as _unloading
-from .._deprecation import keyword_only
+from .._deprecation import keyword_only, warn_deprecated
 from .._jit import compiled_entry
 from .._threads import run_parallel
 from .._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, broadcast_inputs, check_eps_y,
@@ -15,6 +21,11 @@ from .data import table_data
 from ._rectilinear import _check_n_check, _check_tol, dataset
 from .kernel import table_array, table_array_parallel, table_value_kernel
 from .w_star import energy_data, loading_energy_array, W_STAR_OMEGA_MAX
+
+if TYPE_CHECKING:
+    import xarray
+
+    from .generation import GeneratedTable
 
 __all__ = ["Table", "PARALLEL_MIN_POINTS"]
 
@@ -62,6 +73,30 @@ _QUANTITY_PARAMS = """
         >>> t = fastrest.load_table()
         >>> {example}
         """
+_DEPRECATED_DOC = """Deprecated name of :meth:`{new}` (the name :class:`~fastrest.Curve` and
+        :class:`~fastrest.Scene` use); warns :class:`DeprecationWarning`.
+
+        Parameters
+        ----------
+        v1_star, eps_y, nu, unloading
+            As :meth:`{new}`.
+
+        Returns
+        -------
+        float or ndarray
+            As :meth:`{new}`.
+
+        Examples
+        --------
+        >>> import warnings
+        >>> import fastrest
+        >>> t = fastrest.load_table()
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore", DeprecationWarning)
+        ...     t.{old}(5.0, 0.005, 0.33) == t.{new}(5.0, 0.005, 0.33)
+        True
+        """
+
 _UNLOADING = """
         unloading : {"jcg", "etsion", "brake"}
             Unloading model: Jackson-Chusoipin-Green, JGM eq (35) (default), Etsion et al., eq (33),
@@ -104,40 +139,41 @@ class Table:
     --------
     >>> import fastrest
     >>> t = fastrest.load_table()
-    >>> round(t.e_star(5.0, 0.005, 0.33), 6)
+    >>> round(t.e(5.0, 0.005, 0.33), 6)
     0.898078
     """
 
-    def __init__(self, gen, attrs=None, path=None):
+    def __init__(self, gen: GeneratedTable, attrs: dict[str, Any] | None = None,
+                 path: str | os.PathLike[str] | None = None) -> None:
         self.data = table_data(gen)
         self.energy = energy_data(gen)
         self.grid = gen.grid
         self.cell_edges = gen.edges
         self.block_cells = tuple((b.cell0, b.cell1) for b in gen.blocks)
         self._entry = None
-        self._codes = {}  # unloading name -> code, for the names this table holds
+        self._codes: dict[str, int] = {}  # unloading name -> code, for the names this table holds
         self.attrs = attrs or {}
         self.path = path
 
     # the compiled entry point does not pickle: dropped, rebuilt on the first scalar call (and
     # the model-code cache refilled)
-    def __getstate__(self):
+    def __getstate__(self) -> dict[str, Any]:
         state = self.__dict__.copy()
         state["_entry"] = None
         state["_codes"] = {}
         return state
 
-    def __setstate__(self, state):
+    def __setstate__(self, state: dict[str, Any]) -> None:
         self.__dict__.update(state)
         self.__dict__.setdefault("_codes", {})  # pickled before this cache existed
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         g = self.grid
         return (f"Table(eps_y=[{g['eps_y_min']}, {g['eps_y_max']}] x {g['n_eps_y']}, "
                 f"nu=[{g['nu_min']}, {g['nu_max']}] x {g['n_nu']}, cells={self.data.cells.shape[0]}, "
                 f"path={self.path!r})")
 
-    def _scalar(self, q, v1_star, eps_y, nu):
+    def _scalar(self, q: int, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         """One point from Python floats: the kernel's compiled entry point (~1 us instead of ~30 us
         through the array machinery); anything unusual (NaN result, outside the validated range,
         which warns) goes the checked array way. Python floats are tested first, inline (a
@@ -159,7 +195,7 @@ class Table:
             return self._eval(q, v, e, n)
         return self._eval(q, v1_star, eps_y, nu)
 
-    def _eval(self, q, v1_star, eps_y, nu):
+    def _eval(self, q: int, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         (v, e, n), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
         out = np.empty(v.size)
         if v.size == 0:
@@ -174,7 +210,7 @@ class Table:
         warn_if_outside_validated(e, n)
         return shaped(out, shape)
 
-    def _check_material(self, e, n):
+    def _check_material(self, e: NDArray[np.float64], n: NDArray[np.float64]) -> None:
         check_eps_y(e)
         check_nu(n)
         d = self.data
@@ -184,7 +220,7 @@ class Table:
                 raise ValueError(f"{name} = {float(x[out][0])!r} is outside this table's range [{lo}, {hi}] "
                                  "(use fastrest.direct, fastrest.curve, or build a wider table)")
 
-    def _raise(self, v, e, n):
+    def _raise(self, v: NDArray[np.float64], e: NDArray[np.float64], n: NDArray[np.float64]) -> NoReturn:
         check_velocity(v, "v1_star")
         self._check_material(e, n)
         v0, e0, n0 = float(v[0]), float(e[0]), float(n[0])
@@ -196,7 +232,7 @@ class Table:
                          f"error of the w_m* = {OMEGA_M_STAR_MAX:g} limit (V1* = {lim:.10g}) or outside "
                          "this table's coverage")
 
-    def _model_code(self, unloading):
+    def _model_code(self, unloading: str) -> int:
         try:  # a name seen before: one dict look-up (the scalar path's cost is mostly such calls)
             return self._codes[unloading]
         except (KeyError, TypeError):
@@ -210,28 +246,66 @@ class Table:
             self._codes[unloading] = code
         return code
 
-    def omega_m_star(self, v1_star, eps_y, nu):
+    @overload
+    def omega_m(self, v1_star: float, eps_y: float, nu: float) -> float: ...
+    @overload
+    def omega_m(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]: ...
+
+    def omega_m(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         return self._scalar(0, v1_star, eps_y, nu)
 
-    def e_star(self, v1_star, eps_y, nu, unloading="jcg"):
+    @overload
+    def e(self, v1_star: float, eps_y: float, nu: float, unloading: str = "jcg") -> float: ...
+    @overload
+    def e(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
+          unloading: str = "jcg") -> float | NDArray[np.float64]: ...
+
+    def e(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
+          unloading: str = "jcg") -> float | NDArray[np.float64]:
         return self._scalar(1 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
-    def loss_star(self, v1_star, eps_y, nu, unloading="jcg"):
+    @overload
+    def loss(self, v1_star: float, eps_y: float, nu: float, unloading: str = "jcg") -> float: ...
+    @overload
+    def loss(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
+             unloading: str = "jcg") -> float | NDArray[np.float64]: ...
+
+    def loss(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
+             unloading: str = "jcg") -> float | NDArray[np.float64]:
         return self._scalar(2 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
-    omega_m_star.__doc__ = "Maximum interference w_m* = omega_m/omega_c (-), JGM eq (29).\n" + _QUANTITY_PARAMS.format(
+    omega_m.__doc__ = "Maximum interference w_m* = omega_m/omega_c (-), JGM eq (29).\n" + _QUANTITY_PARAMS.format(
         extra="", returns="w_m* (-)", raises="", notes="w_m* solves F(w_m*) = V1*^2 (JGM eq 29).",
-        example="round(t.omega_m_star(5.0, 0.005, 0.33), 6)\n        3.673079")
-    e_star.__doc__ = "Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38).\n" + _QUANTITY_PARAMS.format(
+        example="round(t.omega_m(5.0, 0.005, 0.33), 6)\n        3.673079")
+    e.__doc__ = "Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38).\n" + _QUANTITY_PARAMS.format(
         extra=_UNLOADING, returns="e (-)", raises="; an unknown unloading model, or one the table does not hold",
         notes="e from w_m* and the unloading model's residual interference (JGM eq 38).",
-        example='round(t.e_star(5.0, 0.005, 0.33, "etsion"), 6)\n        0.925853')
-    loss_star.__doc__ = "Dissipated fraction of the impact energy 1 - e^2 (-).\n" + _QUANTITY_PARAMS.format(
+        example='round(t.e(5.0, 0.005, 0.33, "etsion"), 6)\n        0.925853')
+    loss.__doc__ = "Dissipated fraction of the impact energy 1 - e^2 (-).\n" + _QUANTITY_PARAMS.format(
         extra=_UNLOADING, returns="1 - e^2 (-)", raises="; an unknown unloading model, or one the table does not hold",
         notes="1 - e^2 tabulated as such (accurate where e is close to 1).",
-        example="round(t.loss_star(5.0, 0.005, 0.33), 6)\n        0.193456")
+        example="round(t.loss(5.0, 0.005, 0.33), 6)\n        0.193456")
 
-    def loading_energy(self, w, eps_y, nu):
+    # The names before Curve's and Scene's were adopted: deprecated, warn, and call the new ones.
+    def omega_m_star(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
+        warn_deprecated("Table.omega_m_star", "Table.omega_m")
+        return self.omega_m(v1_star, eps_y, nu)
+
+    def e_star(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
+               unloading: str = "jcg") -> float | NDArray[np.float64]:
+        warn_deprecated("Table.e_star", "Table.e")
+        return self.e(v1_star, eps_y, nu, unloading)
+
+    def loss_star(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
+                  unloading: str = "jcg") -> float | NDArray[np.float64]:
+        warn_deprecated("Table.loss_star", "Table.loss")
+        return self.loss(v1_star, eps_y, nu, unloading)
+
+    omega_m_star.__doc__ = _DEPRECATED_DOC.format(old="omega_m_star", new="omega_m")
+    e_star.__doc__ = _DEPRECATED_DOC.format(old="e_star", new="e")
+    loss_star.__doc__ = _DEPRECATED_DOC.format(old="loss_star", new="loss")
+
+    def loading_energy(self, w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         """Loading energy F(w*) = 1 - (W_ep)*(w*) to interference w* over U_c (-), from the table.
 
         F(w*) is V1*^2 of the impact whose maximum interference is w* (JGM eqs 19, 25, 29); U_c is
@@ -290,7 +364,7 @@ class Table:
         warn_if_outside_validated(e, n)
         return shaped(out, shape)
 
-    def W_star(self, w, eps_y, nu):
+    def W_star(self, w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         """Normalised elasto-plastic loading energy (W_ep)* = 1 - F(w*) (-), JGM eq (25), from the table.
 
         (W_ep)* = -(5/2) int_1^w* P* dz: zero at w* = 1, negative above. The same quantity as
@@ -336,7 +410,7 @@ class Table:
         """
         return 1.0 - self.loading_energy(w, eps_y, nu)
 
-    def _raise_energy(self, w, e, n):
+    def _raise_energy(self, w: NDArray[np.float64], e: NDArray[np.float64], n: NDArray[np.float64]) -> NoReturn:
         bad = ~((w >= 0.0) & (w <= W_STAR_OMEGA_MAX))
         if bad.any():
             raise ValueError(f"w (normalised interference omega/omega_c) must be in [0, {W_STAR_OMEGA_MAX:g}] "
@@ -346,7 +420,7 @@ class Table:
                          "the interpolation stencil of, the end of the JG law (a/R = 1); use fastrest.W_star")
 
     @keyword_only("tol", "n_check")
-    def to_xarray(self, *, tol=1e-3, n_check=20000):
+    def to_xarray(self, *, tol: float = 1e-3, n_check: int = 20000) -> xarray.Dataset:
         """This table on a rectilinear (v1_star, eps_y, nu) grid as an :class:`xarray.Dataset`.
 
         Parameters
@@ -378,7 +452,7 @@ class Table:
         tol = _check_tol(tol)
         return dataset(self, tol=tol, n_check=_check_n_check(n_check, allow_zero=True))
 
-    def measure_error(self, points=None):
+    def measure_error(self, points: tuple[ArrayLike, ArrayLike, ArrayLike] | None = None) -> dict[str, dict[str, Any]]:
         """Worst error of every quantity against the direct solver.
 
         Parameters

@@ -8,6 +8,11 @@ F = w*^2.5 exactly (Hertz, eq 19), for every material; above, this module interp
 function, so ln F is very smooth), in eps_y and in nu. :meth:`fastrest.tables.Table.W_star` and
 :meth:`~fastrest.tables.Table.loading_energy` call it.
 """
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+if TYPE_CHECKING:
+    from .generation import GeneratedTable
 import math
 from collections import namedtuple
 
@@ -56,7 +61,7 @@ Examples
 """
 
 
-def energy_data(gen, stencil=STENCIL_W):
+def energy_data(gen: GeneratedTable, stencil: int = STENCIL_W) -> EnergyData:
     """The :class:`EnergyData` of a table's arrays.
 
     Parameters

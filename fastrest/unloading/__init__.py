@@ -18,6 +18,9 @@ below (its code is its position). Python code names a model by string (``unloadi
 gets its :class:`UnloadingModel` from :func:`get`; jitted code passes the integer ``code``, and an
 unknown code gives NaN.
 """
+from __future__ import annotations
+
+from typing import Any
 import math
 from dataclasses import dataclass
 
@@ -88,7 +91,7 @@ MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFE
 NAMES = tuple(MODELS)
 
 
-def get(unloading):
+def get(unloading: str | UnloadingModel) -> UnloadingModel:
     """The registered :class:`UnloadingModel` called ``unloading``.
 
     Parameters

@@ -15,7 +15,7 @@ exactly, so 1 - e^2 = w_res*/w_m*.
 """
 import math
 
-from .._jit import jit
+from .._jit import jit, mul_rn
 from ..contact import W_SWITCH
 from . import elastic
 
@@ -60,7 +60,8 @@ def residual_ratios(wm, wm1):
     if wm <= GAP_FROM_END:
         r = residual_ratio(wm1)
         return r, 1.0 - r
-    gap = 0.02 * math.expm1(-0.54 * math.log1p((wm - OMEGA_END) / (OMEGA_END + 5.9)))
+    # mul_rn: 1.0 - gap is not fused into a multiply-add on CUDA either (fastrest._jit)
+    gap = mul_rn(0.02, math.expm1(-0.54 * math.log1p((wm - OMEGA_END) / (OMEGA_END + 5.9))))
     return 1.0 - gap, gap
 
 
