@@ -16,6 +16,9 @@ date, and prints the same:
    <= 3x the same step with a Hertz force (no history); the exported C header (``fastrest export
    c``) compiled with ``nvcc`` as device code, timed and compared bit for bit with ``Curve.e``
    (skipped, with the reason, where ``nvcc`` is missing or the compile fails).
+3. **Rough surfaces**: one impact (:func:`fastrest.cuda.rough_impact`) on explicit surfaces of 1e7
+   and 1e8 Gaussian summits, the heights already on the device, against issue 22's target (one
+   impact on 1e8 summits in under 50 ms), and e against ``RoughSurface.impact`` on the CPU.
 
 Times are the best of several launches, wall-clock around ``cuda.synchronize()`` (sizes large enough
 that launch latency is under 1 %). Without a GPU it exits with status 2 and says so;
@@ -38,6 +41,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Issue 22's targets: ns per point over the floor (e_*), or over the Hertz step (contact_force).
 TARGETS = {"e_curve": 2.0, "e_material": 3.0, "e_table": 10.0, "contact_force": 3.0, "c_header": 2.0}
+#: Issue 22's target for one impact on 1e8 explicit summits (ms).
+ROUGH_TARGET_MS = 50.0
 
 
 def parse(argv):
@@ -517,13 +522,48 @@ def main(args):
     if sim:
         lines += ["Under the simulator every timing above is the simulator's (Python threads): meaningless; "
                   "the agreement rows compare the CPU's code with itself and check the plumbing only.", ""]
-    lines += ["Not measured here: rough surfaces on the GPU (no device path yet), the CPU side "
-              "(`python -m bench`).", ""]
+    lines += rough_section(fc, [40] if sim else [10_000_000, 100_000_000], rounds, rng)
+    lines += ["Not measured here: the CPU side (`python -m bench`).", ""]
     for row in lines[lines.index("| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |") + 1:]:
         print(row)
     Path(args.output).write_text("\n".join(lines))
     print(f"wrote {args.output}")
     return 0
+
+
+def rough_section(fc, sizes, rounds, rng):
+    """Lines of section 3: one impact on explicit Gaussian summits, GPU time and e against the CPU."""
+    from fastrest import rough
+    mat = fastrest.Material(200e9, 0.3, 1e9)
+    lines = ["## Rough surfaces: one impact on explicit summits (`fastrest.cuda.rough_impact`)", "",
+             "Gaussian summit heights (sigma = 30 nm, R_a = 100 um, steel), V1 = 1 m/s, M = 1e-5 kg per 1000 "
+             "summits; the heights on the device already (copied at the first call); best of the runs, the "
+             "whole solve (every kernel launch and the host's Newton steps). e against `RoughSurface.impact` "
+             "on this machine's CPU.", "",
+             "| summits | GPU ms per impact | CPU s per impact | e (GPU) | relative difference from the CPU | "
+             "in contact | target | met |",
+             "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"]
+    for n in sizes:
+        try:
+            s = rough.RoughSurface(mat, 100e-6, heights=rng.normal(0.0, 30e-9, n))
+            M = 1e-5 * n / 1000
+            g = fc.rough_impact(s, 1.0, M)  # compiles, copies the heights and the table
+            t = best_time(lambda: fc.rough_impact(s, 1.0, M), rounds) * 1e3
+            t0 = time.perf_counter()
+            c = s.impact(1.0, M)
+            t_cpu = time.perf_counter() - t0
+        except Exception as e:  # noqa: BLE001 - reported in the table
+            lines.append(f"| {n:.0e} | - | - | - | - | - | - | does not run: {type(e).__name__}: "
+                         f"{str(e).splitlines()[0][:120]} |")
+            continue
+        target = ROUGH_TARGET_MS if n >= 100_000_000 else None
+        met = "-" if target is None else ("met" if t <= target else "not met")
+        lines.append(f"| {n:.0e} | {t:.2f} | {t_cpu:.3f} | {g.e:.12f} | {abs(g.e - c.e) / c.e:.2e} | {g.n_contact} | "
+                     f"{'-' if target is None else f'< {target:g} ms'} | {met} |")
+        del s
+    for row in lines[-len(sizes):]:
+        print(row)
+    return lines + [""]
 
 
 def _version(dist):

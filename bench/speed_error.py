@@ -160,8 +160,8 @@ def run(cfg, log=print):
         "fit45_numba": ((lambda: kernels.fit45_loop(v, e, out)), N),
         "fit45_numpy": ((lambda: models.jgm_fit_etsion(v, e)), N),
         "direct": ((lambda: fastrest.direct.e_exact(vd, ed, nud)), nd),
-        "table_default": ((lambda: fastrest.e(v, e, n)), N),
-        "table_default_1t": (with_threads(1, lambda: fastrest.e(v, e, n)), N),
+        "table_default": ((lambda: fastrest.e_star(v, e, n)), N),
+        "table_default_1t": (with_threads(1, lambda: fastrest.e_star(v, e, n)), N),
     }
     for bits, cs in curves.items():
         cases[f"curve_{bits}"] = curve_case(cs)

@@ -190,8 +190,11 @@ bad = {
 res["bad"] = {key: call(f) + [t, words] for key, (f, t, words) in bad.items()}
 
 import doctest
-r = doctest.testmod(fc, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
-res["doctest"] = [r.attempted, r.failed]
+import fastrest.cuda._batch, fastrest.cuda._device, fastrest.cuda._rough
+res["doctest"] = [0, 0]
+for m in (fastrest.cuda._device, fastrest.cuda._batch, fastrest.cuda._rough):   # where the examples live
+    r = doctest.testmod(m, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    res["doctest"] = [res["doctest"][0] + r.attempted, res["doctest"][1] + r.failed]
 print(json.dumps(res))
 """
 
@@ -248,7 +251,7 @@ import numba.cuda.dispatcher as dispatcher
 dispatcher.get_current_device = lambda: types.SimpleNamespace(compute_capability=(9, 0))
 import fastrest
 from fastrest import jit as frj
-from fastrest.cuda import _kernel_function
+from fastrest.cuda._device import _kernel_function
 from fastrest.force_law import stack_laws
 f8, st = numba.float64[::1], numba.float64[:, ::1]
 T = numba.typeof
@@ -336,3 +339,105 @@ def test_bench_gpu_script_under_the_simulator(tmp_path):
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
     text = out.read_text()
     assert "simulator" in text and "e_curve" in text and "contact_force" in text
+
+
+# --- rough surfaces: explicit summits, the sums on the device --------------------------------------
+
+ROUGH_CHECKS = """
+import json, math
+import numpy as np
+import fastrest, fastrest.cuda as fc
+from fastrest import rough
+assert fc.SIMULATOR
+rng = np.random.default_rng(22)
+mat = fastrest.Material(200e9, 0.3, 1e9)
+s = rough.RoughSurface(mat, 1e-4, heights=rng.normal(0.0, 3e-8, 60))
+res = {"worst": {}, "counts": True, "scalar": None, "bad": {}}
+v = np.array([0.01, 1.0])  # tallest summits near the onset / every summit in contact, most yielded
+for unloading in ("jcg", "etsion", "brake"):
+    g, c = fc.rough_impact(s, v, 1e-3, unloading), s.impact(v, 1e-3, unloading)
+    assert type(g) is type(c) and g.unloading == unloading and g.kind == "explicit"
+    for f in ("e", "loss", "d_min", "force_max", "dissipated", "w_star_max", "V1_star", "energy_in"):
+        a, b = np.asarray(getattr(g, f)), np.asarray(getattr(c, f))
+        res["worst"][f"{unloading} {f}"] = float(np.max(np.abs(a - b) / np.abs(b)))
+    res["counts"] &= bool(np.array_equal(g.n_contact, c.n_contact) and np.array_equal(g.n_yielded, c.n_yielded)
+                          and np.all(c.n_contact > 0) and np.any(c.n_yielded > 0))
+g = fc.rough_impact(s, 0.3, 1e-3)
+res["scalar"] = [type(g.e).__name__, abs(g.e - s.impact(0.3, 1e-3).e)]
+
+def err(fn):
+    try:
+        fn()
+    except Exception as e:
+        return [type(e).__name__, str(e)]
+    return ["no error", ""]
+
+gw = rough.RoughSurface(mat, 1e-4, gw=dict(eta=1e10, sigma=1e-7, A_n=1e-8))
+res["bad"]["statistical"] = err(lambda: fc.rough_impact(gw, 0.1, 1e-3))
+res["bad"]["not a surface"] = err(lambda: fc.rough_impact(np.zeros(5), 0.1, 1e-3))
+res["bad"]["device V1"] = err(lambda: fc.rough_impact(s, fc.to_device(np.array([0.1])), 1e-3))
+res["bad"]["V1 <= 0"] = err(lambda: fc.rough_impact(s, [0.1, -1.0], 1e-3))
+res["bad"]["unloading"] = err(lambda: fc.rough_impact(s, 0.1, 1e-3, "nope"))
+print(json.dumps(res))
+"""
+
+
+@pytest.fixture(scope="module")
+def rough_simulated():
+    if not HAVE_NUMBA_CUDA:
+        pytest.skip('numba-cuda is not installed (pip install "fastrest[gpu]")')
+    t0 = time.perf_counter()
+    res = _json(_run(ROUGH_CHECKS))
+    res["seconds"] = time.perf_counter() - t0
+    return res
+
+
+@needs_numba_cuda
+def test_rough_impact_equals_cpu_under_the_simulator(rough_simulated):
+    """60 summits, 2 speeds, each unloading model: the CPU path to its stated accuracy (docs/rough.md,
+    1e-12 relative and better); measured ~2e-15 (only the summation order differs)."""
+    worst = rough_simulated["worst"]
+    assert len(worst) == 24 and max(worst.values()) < 1e-13, worst
+    assert rough_simulated["counts"] is True
+    kind, diff = rough_simulated["scalar"]
+    assert kind == "float" and diff < 1e-13
+    assert rough_simulated["seconds"] < 30  # ~10 s: every launch runs its threads in Python
+
+
+@needs_numba_cuda
+def test_rough_impact_bad_input(rough_simulated):
+    bad = rough_simulated["bad"]
+    expect = {"statistical": ("TypeError", "explicit"), "not a surface": ("TypeError", "RoughSurface"),
+              "device V1": ("TypeError", "device array"), "V1 <= 0": ("ValueError", "V1"),
+              "unloading": ("ValueError", "nope")}
+    wrong = {k: bad[k] for k, (typ, word) in expect.items() if bad[k][0] != typ or word not in bad[k][1]}
+    assert not wrong, wrong
+
+
+ROUGH_PTX = """
+import json, types
+import numba
+from numba import cuda
+import numba.cuda.dispatcher as dispatcher
+dispatcher.get_current_device = lambda: types.SimpleNamespace(compute_capability=(9, 0))
+import fastrest.cuda as fc
+import fastrest.cuda._rough as fcr
+from fastrest import forward
+law = numba.typeof(forward.forward_data(0.005, 0.3, "brake", w_max=40.0))
+f8, part = numba.float64[::1], numba.float64[:, ::1]
+res = {}
+for kind, lt in (("hertz", numba.float64), ("jg", law), ("impact", law)):
+    try:
+        ptx, _ = cuda.compile_ptx(fcr._rough_kernel_function(fcr._ROUGH_ROWS[kind]),
+                                  (lt, f8, numba.float64, numba.float64, numba.boolean, part), cc=(9, 0))
+        res[kind] = "ok" if ".entry" in ptx else "no entry"
+    except Exception as e:
+        res[kind] = f"{type(e).__name__}: {str(e)[:300]}"
+print(json.dumps(res))
+"""
+
+
+@needs_numba_cuda
+def test_rough_kernels_compile_to_ptx():
+    res = _json(_run(ROUGH_PTX, sim=False))
+    assert res == {"hertz": "ok", "jg": "ok", "impact": "ok"}, res

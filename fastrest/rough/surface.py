@@ -312,6 +312,12 @@ class RoughSurface:
         >>> bool(r.e[0] > r.e[1])
         True
         """
+        return self._impact(V1, M, unloading, extrapolate, self._solve_explicit)
+
+    def _impact(self, V1, M, unloading, extrapolate, solve_explicit):
+        """:meth:`impact` with the explicit solver ``solve_explicit(e_hi, e_lo, unloading,
+        extrapolate, M)`` -> (8, n) (:meth:`_solve_explicit`; ``fastrest.cuda.rough_impact`` passes
+        its GPU one)."""
         unloading_code(unloading)
         M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
         extrapolate = check_bool(extrapolate, "extrapolate")
@@ -328,7 +334,7 @@ class RoughSurface:
         if flat.size == 0:
             raw = np.zeros((8, 0))
         elif self.kind == "explicit":
-            raw = self._solve_explicit(e_hi, e_lo, unloading, extrapolate, M)
+            raw = solve_explicit(e_hi, e_lo, unloading, extrapolate, M)
         else:
             raw = self._solve_statistical(e_hi, unloading, extrapolate, M)
         out = self._assemble(flat, M, e_hi, raw)
