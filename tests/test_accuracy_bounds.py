@@ -220,6 +220,7 @@ SMALL = dict(eps_y_min=0.004, eps_y_max=0.006, n_eps_y=8, nu_min=0.3, nu_max=0.3
              bits_per_octave=2, eps_y_blocks=[[16.0, 6]], n_eps_y_energy=6)
 
 
+@pytest.mark.slow
 def test_inaccurate_table_warns_on_build_and_load(tmp_path):
     path = tmp_path / "coarse.h5"
     with pytest.warns(AccuracyWarning, match="measured"):

@@ -79,6 +79,7 @@ def test_classifier_flags_bad_behaviour():
     assert fuzz.classify(("leak", "E", "tiny", "either"), wrong)[0] == "unclear"
 
 
+@pytest.mark.slow
 def test_crash_and_hang_are_counted(monkeypatch, tmp_path):
     """A child that dies or hangs is a crash, and the runner resumes after it."""
     cases = [("t", "x", "a", "either"), ("t", "x", "b", "either"), ("t", "x", "c", "either")]

@@ -88,6 +88,7 @@ def test_rough_extremes_give_domain_errors(V1, M, word):
         rough.RoughSurface(STEEL, 1e-4, gw=dict(eta=1e10, sigma=1e300, A_n=1e-4))
 
 
+@pytest.mark.slow
 def test_rough_light_impacts_solved_where_the_gaussian_resolves():
     """Tiny impact energies: a converged answer (e -> 1 in the Hertz range) down to where the height
     density underflows, then a clear domain error (was "did not converge (please report)")."""

@@ -189,6 +189,7 @@ def _points(n, seed):
             np.concatenate([nu, nu[k][ok], nu[:60]]))
 
 
+@pytest.mark.slow
 def test_doc_evaluator_matches_fastrest(doc):
     v, e, n = _points(700, 12)
     assert doc.quantities == ["omega_m_star", "e_jcg", "loss_jcg", "e_etsion", "loss_etsion", "e_brake", "loss_brake"]

@@ -372,6 +372,7 @@ def _build_in_subprocess(out, env_extra):
     return out.read_bytes()
 
 
+@pytest.mark.slow
 def test_build_does_not_depend_on_threads_or_cpu_features(tmp_path):
     """The same bytes with 1 or 2 Numba threads and with NumPy's AVX-512 and AVX2 code paths
     disabled (they changed the last bit of log1p and geomspace before)."""

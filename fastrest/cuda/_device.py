@@ -6,7 +6,7 @@ from typing import Any, Callable
 import numpy as np
 
 try:
-    import numba_cuda  # type: ignore[import-not-found,unused-ignore]  # noqa: F401  (numba's own numba.cuda is deprecated)
+    import numba_cuda  # type: ignore[import-not-found,import-untyped,unused-ignore]  # noqa: F401  (numba's own numba.cuda is deprecated)
     from numba import cuda as _cuda_module
     from numba import float64 as _f8
     from numba.cuda.core import config as _cuda_config  # type: ignore[import-not-found,unused-ignore]

@@ -1,22 +1,9 @@
 """A table on a rectilinear (v1_star, eps_y, nu) grid for the xarray / NetCDF world:
 :meth:`Table.to_xarray() <fastrest.tables.Table.to_xarray>`, ``fastrest export grid``
-(:mod:`fastrest.export.grid`, which adds the file and the shipped table as default).
-
-Variables ``omega_m`` (w_m*), ``e_<model>`` and ``loss_<model>`` (1 - e^2) of every unloading model
-a table holds, on coordinates ``v1_star`` (V1* = V1/V_c), ``eps_y`` and ``nu``, with NaN wherever
-the model is undefined (w_m* > 425 for that material, or past a/R = 1). Node values come from the
-table (:mod:`fastrest.tables`, ~1e-9 of the direct solver), the elastic range 0 <= V1* <= 1
-included (e = 1, 1 - e^2 = 0, w_m* = V1*^0.8, evaluated by the table's kernel): the grid starts
-at V1* = 0.
-
-Node placement: each axis is refined by bisection, independently, until linear interpolation along
-it is within tol/3 at 7 points inside every interval, for probe lines across the other two axes;
-the V1* axis is checked linear in V1* (what ``xarray``'s ``.interp`` does) and, above V1* = 1,
-also linear in ln V1*, and has nodes on both sides of the model's jump at V1* = 1.9^1.25 (:data:`fastrest._placement.JUMP`:
-the Jackson-Green loading law does not meet Hertz's at w* = 1.9, so e jumps there). The result is then measured at random points against
-the direct solver (:mod:`fastrest.direct`): trilinear and tricubic (4-point Lagrange per axis)
-interpolation in (:func:`v_coordinate` (V1*), eps_y, nu): V1* - 1 up to V1* = 1, ln V1* above. Error: ``|interpolated - exact| / max(|exact|, 1)``, i.e.
-absolute for e and 1 - e^2, relative for w_m* > 1.
+(:mod:`fastrest.export.grid`, which adds the file and the shipped table as default, and whose
+module documentation describes the variables, the node placement and the error measured).
+Here, below :class:`~fastrest.tables.Table` in the layers: the node placement, the values from the
+table's kernel, and the measurement against the direct solver.
 """
 import json
 from typing import Any
