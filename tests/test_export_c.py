@@ -455,6 +455,7 @@ def _nvrtc_compile(lib, source, options):
         lib.nvrtcDestroyProgram(ctypes.byref(prog))
 
 
+@pytest.mark.cuda   # CI's `-m cuda` run has the gpu extra, whose wheels bring libnvrtc
 def test_c_header_compiles_with_nvrtc_at_run_time(tmp_path):
     """NVRTC (CUDA source compiled at run time, as DEM-Engine's custom force models are) compiles the
     header's text followed by a kernel, with no system header available (the header includes
