@@ -31,18 +31,20 @@ CXX = shutil.which("c++")
 NVCC = shutil.which("nvcc")
 MATERIALS = [(0.005, 0.33), (0.0008, 0.25), (0.0095, 0.42)]
 
-PROGRAM = r"""
-#include <stdio.h>
-#include <stdlib.h>
-#include "scene.h"
-int main(int argc, char **argv)
+def _host_main(n_out, extra=""):
+    """The C driver both programs share: reads (k, v) pairs, writes w_m*, e and 1 - e^2 of every
+    model (and NaN for unknown models), then ``extra`` (C statements filling r[9] ...), n_out values."""
+    return HOST_MAIN.replace("N_OUT", str(n_out)).replace("EXTRA", extra)
+
+
+HOST_MAIN = r"""int main(int argc, char **argv)
 {
     FILE *in = fopen(argv[1], "rb"), *out = fopen(argv[2], "wb");
     long n, i;
     (void)argc;
     if (!in || !out || fread(&n, sizeof n, 1, in) != 1) return 1;
     for (i = 0; i < n; i++) {
-        double kv[2], r[9];
+        double kv[2], r[N_OUT];
         int k, m;
         if (fread(kv, sizeof(double), 2, in) != 2) return 1;
         k = (int)kv[0];
@@ -53,11 +55,17 @@ int main(int argc, char **argv)
         }
         r[7] = fastrest_e(k, kv[1], FASTREST_N_UNLOADING); /* unknown model: NaN */
         r[8] = fastrest_loss(k, kv[1], -1);
-        fwrite(r, sizeof(double), 9, out);
+        EXTRAfwrite(r, sizeof(double), N_OUT, out);
     }
     return fclose(out) != 0;
 }
 """
+
+PROGRAM = r"""
+#include <stdio.h>
+#include <stdlib.h>
+#include "scene.h"
+""" + _host_main(9)
 
 
 def _ulp_distance(a, b):
@@ -290,30 +298,8 @@ __global__ void fastrest_kernel(const double *v, double *out, int n)
     }
 }
 /* the same __host__ __device__ functions from host code: runs without a GPU */
-int main(int argc, char **argv)
-{
-    FILE *in = fopen(argv[1], "rb"), *out = fopen(argv[2], "wb");
-    long n, i;
-    (void)argc;
-    if (!in || !out || fread(&n, sizeof n, 1, in) != 1) return 1;
-    for (i = 0; i < n; i++) {
-        double kv[2], r[10];
-        int k, m;
-        if (fread(kv, sizeof(double), 2, in) != 2) return 1;
-        k = (int)kv[0];
-        r[0] = fastrest_omega_m(k, kv[1]);
-        for (m = 0; m < FASTREST_N_UNLOADING; m++) {
-            r[1 + m] = fastrest_e(k, kv[1], m);
-            r[1 + FASTREST_N_UNLOADING + m] = fastrest_loss(k, kv[1], m);
-        }
-        r[7] = fastrest_e(k, kv[1], FASTREST_N_UNLOADING); /* unknown model: NaN */
-        r[8] = fastrest_loss(k, kv[1], -1);
-        r[9] = fastrest_v1_star(k, kv[1]); /* kv[1] read as a speed in m/s */
-        fwrite(r, sizeof(double), 10, out);
-    }
-    return fclose(out) != 0;
-}
-"""
+""" + _host_main(
+    10, "r[9] = fastrest_v1_star(k, kv[1]); /* kv[1] read as a speed in m/s */\n        ")
 
 KERNEL = r"""
 extern "C" __global__ void fastrest_kernel(const double *v, double *out, int n)

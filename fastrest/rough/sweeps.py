@@ -240,7 +240,8 @@ def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jc
             raise ValueError(f"M has {len(masses)} values for {len(surfaces)} surfaces")
     for m in masses:
         check_finite_positive(m, "M", "(kg, mass of the flat)")
-    v = check_speeds(V1)[0].reshape(as_float_array(V1, "V1").shape)   # the same V1 for every surface
+    flat, shape = check_speeds(V1)   # the same V1 for every surface
+    v = flat.reshape(shape)
     unloading_code(unloading)
     check_bool(extrapolate, "extrapolate")
     if not callable(factory):
