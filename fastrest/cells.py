@@ -62,7 +62,7 @@ def closed_form(v, model):
     lv = math.log(v)
     w = min(math.exp(0.8 * lv), W_SWITCH)
     # eps_y and nu are not read under Hertz loading: NaN would show if a model did
-    e2, loss, _, _, _ = _unloading.restitution(model, v * v, w, math.expm1(0.8 * lv), w**1.5, np.nan, np.nan)
+    e2, loss, _, _, _ = _unloading.restitution(model, v * v, w, math.expm1(0.8 * lv), w**1.5, np.nan, np.nan, 0, 0.0)
     return w, math.sqrt(e2), loss
 
 

@@ -23,98 +23,27 @@ import math
 
 import numpy as np
 
-from ._jit import jit, mul_rn
-from ._validation import OMEGA_STAR_SWITCH, broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
-from .critical import c_of_nu
+from ._jit import jit
+from ._validation import broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
+from . import loading as _loading
+# the JG kernels, for fastrest's own modules that compute with the JG law only (tables)
+from .loading.jackson_green import (W_SWITCH, LN_SWITCH, area_exponent, a_star_kernel,  # noqa: F401
+                                    radius_ratio_kernel, p_star_jg, p_star_kernel, p_star_unchecked,
+                                    omega_star_limit_kernel)
 
 
 __all__ = ["P_star", "A_star", "omega_star_limit"]
 
-W_SWITCH = OMEGA_STAR_SWITCH
-LN_SWITCH = math.log(W_SWITCH)
-
-
 @jit
-def area_exponent(eps_y):
-    """B = 0.14 exp(23 eps_y), JGM eq (10)."""
-    return mul_rn(0.14, math.exp(23.0 * eps_y))  # 1.0 + B: not fused on CUDA either (fastrest._jit)
-
-
-@jit
-def a_star_kernel(w, eps_y, nu):
-    """A*(w): Hertz A* = w for w <= 1.9, JG eq (8) above."""
-    if w <= W_SWITCH:
-        return w
-    return w * (w / W_SWITCH) ** area_exponent(eps_y)
-
-
-@jit
-def radius_ratio_kernel(w, eps_y, nu):
-    """Contact radius over sphere radius, a/R = (pi C eps_y/2) sqrt(A*)."""
-    return 0.5 * math.pi * c_of_nu(nu) * eps_y * math.sqrt(a_star_kernel(w, eps_y, nu))
-
-
-@jit
-def p_star_jg(w, eps_y, nu, C, B):
-    """JG branch of P*(w) (eq 9) with C and B precomputed, for w >= 1.9.
-
-    Not checked against a/R < 1: callers bound w (the solvers by the a/R = 1 point, see
-    :func:`omega_star_limit_kernel`); the table generator evaluates the formula a little past it
-    on purpose, as a smooth extension that keeps interpolation stencils of valid materials whole.
-    """
-    lw = math.log(w)  # one logarithm serves the four powers of w (~1.5x faster than **)
-    a_star = w * math.exp(B * (lw - LN_SWITCH))
-    a_over_r = 0.5 * math.pi * C * eps_y * math.sqrt(a_star)
-    hg = 2.84 - 0.92 * (1.0 - math.cos(math.pi * a_over_r))
-    return (math.exp(-0.25 * math.exp(lw * (5.0 / 12.0))) * w * math.sqrt(w)
-            + 4.0 * hg / C * (-math.expm1(-math.exp(lw * (5.0 / 9.0)) / 25.0)) * w)
-
-
-@jit
-def p_star_kernel(w, eps_y, nu):
-    """P*(w): Hertz w^1.5 for w <= 1.9 (eq 14), JG eq (9) above; NaN past a/R = 1 or for w < 0."""
-    if not w >= 0.0:
-        return np.nan
-    if w <= W_SWITCH:
-        return w**1.5
-    if not radius_ratio_kernel(w, eps_y, nu) < 1.0:
-        return np.nan
-    return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
-
-
-@jit
-def p_star_unchecked(w, eps_y, nu):
-    """P*(w) without the a/R < 1 check (for callers that bound w themselves)."""
-    if w <= W_SWITCH:
-        return w**1.5
-    return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
-
-
-@jit
-def omega_star_limit_kernel(eps_y, nu):
-    """The w* at which a/R reaches 1 (the JG law's end, eq 12); inf-free for eps_y > 0."""
-    C = c_of_nu(nu)
-    a_lim = (2.0 / (math.pi * C * eps_y)) ** 2  # A* at a/R = 1
-    if a_lim <= W_SWITCH:
-        return a_lim  # Hertz branch: A* = w
-    B = area_exponent(eps_y)
-    # w^(1+B) / 1.9^B = a_lim
-    return math.exp((math.log(a_lim) + mul_rn(B, math.log(W_SWITCH))) / (1.0 + B))
-
-
-@jit
-def _p_star_array(w, eps_y, nu, out):
+def _p_star_array(w, eps_y, nu, et_ratio, law, out):
     for i in range(w.size):
-        out[i] = p_star_kernel(w[i], eps_y[i], nu[i])
+        out[i] = _loading.p_star(law, w[i], eps_y[i], nu[i], et_ratio[i])
 
 
 @jit
-def _a_star_array(w, eps_y, nu, out):
+def _a_star_array(w, eps_y, nu, et_ratio, law, out):
     for i in range(w.size):
-        if w[i] >= 0.0 and radius_ratio_kernel(w[i], eps_y[i], nu[i]) < 1.0:
-            out[i] = a_star_kernel(w[i], eps_y[i], nu[i])
-        else:
-            out[i] = np.nan
+        out[i] = _loading.a_star(law, w[i], eps_y[i], nu[i], et_ratio[i])
 
 
 def check_omega(w, eps_y, nu, name="w"):
@@ -139,19 +68,22 @@ def past_law_end(eps_y, nu, w_ar):
             f"a/R reaches 1 at w* = {w_ar:.6g}")
 
 
-def evaluate_law(kernel, w, eps_y, nu):
-    """Validate (w, eps_y, nu), broadcast them, and fill the output with ``kernel``."""
-    (w, eps_y, nu), shape = broadcast_inputs((w, "w"), (eps_y, "eps_y"), (nu, "nu"))
+def evaluate_law(kernel, w, eps_y, nu, et_ratio=0.0, loading=None):
+    """Validate (w, eps_y, nu, et_ratio) and the law, broadcast them, and fill the output with
+    ``kernel(w, eps_y, nu, et_ratio, law_code, out)``."""
+    (w, eps_y, nu, h), shape = broadcast_inputs((w, "w"), (eps_y, "eps_y"), (nu, "nu"), (et_ratio, "et_ratio"))
     check_eps_y(eps_y)
     check_nu(nu)
+    law = _loading.resolve(loading, h)
     check_omega(w, eps_y, nu)
     out = np.empty_like(w)
-    kernel(w, eps_y, nu, out)
+    kernel(w, eps_y, nu, h, law.code, out)
     return shaped(out, shape)
 
 
-def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
-    """Normalised contact force P* = P/P_c of the JG law, JGM eqs (9), (14).
+def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
+           loading: str | None = None) -> float | NDArray[np.float64]:
+    """Normalised contact force P* = P/P_c of the loading law (JG: JGM eqs 9, 14).
 
     Parameters
     ----------
@@ -162,6 +94,13 @@ def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
         Sy/E' (-), > 0 (validated range 0.0005-0.01).
     nu : float or array_like
         Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; 0 (default) is
+        elastic-perfectly plastic. Above 0 the law is Ghaednia et al. (2019)
+        (:mod:`fastrest.loading.ghaednia`).
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks Jackson-Green where every
+        ``et_ratio`` is 0 and Ghaednia et al. otherwise (equal bit for bit at 0).
 
     Returns
     -------
@@ -174,14 +113,17 @@ def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
         An input is not a real number or array of them (strings, booleans, None, complex).
     ValueError
         w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1); an
+        unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``; shapes that do not
+        broadcast.
 
     Notes
     -----
     Hertz P* = w^1.5 for w <= 1.9 (JGM eq 14), the Jackson-Green (2005) fit above (eq 9, with the
     hardness of eq 12 and the area of eqs 8, 10); P* jumps by about -0.16 % at w = 1.9
-    (docs/model.md section 3). No ValidityWarning: this is the law itself, evaluated wherever it
-    is defined.
+    (docs/model.md section 3). With hardening, Ghaednia et al. (2019) blend it towards Hertz
+    (docs/model.md section 12); the law ends where JG's does. No ValidityWarning: this is the law
+    itself, evaluated wherever it is defined.
 
     Examples
     --------
@@ -190,12 +132,15 @@ def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
     25.647583
     >>> fastrest.P_star([1.0, 1.9], 0.005, 0.33).round(6)  # Hertz side of the switch
     array([1.      , 2.618969])
+    >>> round(fastrest.P_star(10.0, 0.005, 0.33, et_ratio=0.01), 6)  # Ghaednia et al., Et = E/100
+    25.842654
     """
-    return evaluate_law(_p_star_array, w, eps_y, nu)
+    return evaluate_law(_p_star_array, w, eps_y, nu, et_ratio, loading)
 
 
-def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
-    """Normalised contact area A* = A/A_c of the Jackson-Green law (-).
+def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
+           loading: str | None = None) -> float | NDArray[np.float64]:
+    """Normalised contact area A* = A/A_c of the loading law (JG: JGM eqs 8, 15) (-).
 
     Parameters
     ----------
@@ -206,6 +151,13 @@ def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
         Sy/E' (-), > 0 (validated range 0.0005-0.01).
     nu : float or array_like
         Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; 0 (default) is
+        elastic-perfectly plastic. Above 0 the law is Ghaednia et al. (2019)
+        (:mod:`fastrest.loading.ghaednia`).
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks Jackson-Green where every
+        ``et_ratio`` is 0 and Ghaednia et al. otherwise (equal bit for bit at 0).
 
     Returns
     -------
@@ -218,7 +170,9 @@ def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
         An input is not a real number or array of them (strings, booleans, None, complex).
     ValueError
         w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1); an
+        unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``; shapes that do not
+        broadcast.
 
     Notes
     -----
@@ -233,7 +187,7 @@ def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
     >>> fastrest.A_star(1.0, 0.005, 0.33)
     1.0
     """
-    return evaluate_law(_a_star_array, w, eps_y, nu)
+    return evaluate_law(_a_star_array, w, eps_y, nu, et_ratio, loading)
 
 
 def omega_star_limit(eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:

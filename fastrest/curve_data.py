@@ -18,6 +18,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._jit import jit
+from . import loading as _loading
 from . import unloading as _unloading
 from .cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows, jg_nodes
 from .energy import V_SWITCH, f_star_kernel, omega_m_sorted_kernel
@@ -209,7 +210,8 @@ def curve_array(data, what, v, out):
 # --- building ---------------------------------------------------------------------------------
 
 def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | None = None, extrapolate: bool = False,
-                     bits_per_octave: int = BITS_PER_OCTAVE, jg_values: Any = None) -> CurveData:
+                     bits_per_octave: int = BITS_PER_OCTAVE, jg_values: Any = None, et_ratio: float = 0.0,
+                     loading: Any = None) -> CurveData:
     """Tabulate one material: the :class:`CurveData` behind a :class:`~fastrest.curve.Curve`, unchecked inputs.
 
     Parameters
@@ -227,6 +229,10 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
         Allow w_m* > 425 (keyword-only).
     bits_per_octave : int
         Cells per octave of V1* above the kink, 2^bits_per_octave (keyword-only).
+    et_ratio : float, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (keyword-only; default 0).
+    loading : str, LoadingLaw or None, optional
+        The loading law (:func:`fastrest.loading.resolve`; keyword-only).
     jg_values : callable, optional
         ``jg_values(v) -> (3, n)`` array of w_m*, e and 1 - e^2 at speeds v > 1.9^1.25, replacing the
         direct solver (bench/ builds a curve from a table this way; keyword-only).
@@ -256,13 +262,15 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
     """
     unit = _unloading.get(unloading)
     model = unit.code
-    w_hi = w_upper_model(eps_y, nu, extrapolate, model)
-    limit = speed_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)
+    law = _loading.resolve(loading, et_ratio)
+    w_hi = w_upper_model(eps_y, nu, extrapolate, model, law.code, et_ratio)
+    limit = speed_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading, et_ratio=et_ratio, loading=law)
     if v_max is not None and v_max > limit:
-        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading)
+        raise_out_of_range(np.array([v_max]), np.array([eps_y]), np.array([nu]), extrapolate, "v_max", unloading,
+                           et_ratio=et_ratio, loading=law)
     if unit.cells_end < w_hi:  # extrapolating towards an unloading model's end: stop short of it
         w_hi = unit.cells_end
-        short = float(np.sqrt(f_star_kernel(w_hi, eps_y, nu)))
+        short = float(np.sqrt(f_star_kernel(w_hi, eps_y, nu, law.code, et_ratio)))
         if v_max is not None and v_max > short:
             raise ValueError(
                 f"v_max = {v_max!r} is past V1* = {short:.10g} (w_m* = {w_hi:.6g}), the end of what a curve "
@@ -280,8 +288,8 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
     flat = jg_nodes(edges, v_max)
     if jg_values is None:
         vals = np.empty((3, flat.size))
-        omega_m_sorted_kernel(flat, eps_y, nu, w_hi, vals[0])
-        _restitution_array(flat, vals[0], eps_y, nu, model, vals[1:])
+        omega_m_sorted_kernel(flat, eps_y, nu, w_hi, law.code, et_ratio, vals[0])
+        _restitution_array(flat, vals[0], eps_y, nu, model, law.code, et_ratio, vals[1:])
     else:
         vals = np.asarray(jg_values(flat))
     vals = share_edges(vals.reshape(3, edges.shape[0], -1))
@@ -291,9 +299,9 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
 
 
 @jit
-def _restitution_array(v, w, eps_y, nu, model, out):
+def _restitution_array(v, w, eps_y, nu, model, law, et_ratio, out):
     """out[:, i] = (e, 1 - e^2) at V1* = v[i] with w_m* = w[i] (w > 1.9)."""
     for i in range(v.size):
-        e, loss, _, _ = _unloading.restitution_kernel(v[i], w[i], w[i] - 1.0, eps_y, nu, model)
+        e, loss, _, _ = _unloading.restitution_kernel(v[i], w[i], w[i] - 1.0, eps_y, nu, model, law, et_ratio)
         out[0, i] = e
         out[1, i] = loss

@@ -29,50 +29,56 @@ from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_bool, ch
 from ._validation import broadcast_inputs, shaped
 from .energy import V_SWITCH, omega_m_kernel
 from .limits import raise_out_of_range, speed_limit, w_upper_model
-from .unloading import get as unloading_model, restitution_kernel
+from .loading import resolve as resolve_loading
+from .unloading import get as unloading_model, restitution_kernel, warn_if_unfitted
 
 __all__ = ["omega_m_exact", "e_exact", "loss_exact", "residual_exact", "solve"]
 
 
 @jit
-def impact_kernel(v, eps_y, nu, model, extrapolate):
-    """(w_m*, e, 1 - e^2, w_res*, R_res/R) for one impact; NaNs outside the domain."""
-    w_hi = w_upper_model(eps_y, nu, extrapolate, model)
-    wm = omega_m_kernel(v, eps_y, nu, w_hi)
+def impact_kernel(v, eps_y, nu, model, extrapolate, law, et_ratio):
+    """(w_m*, e, 1 - e^2, w_res*, R_res/R) for one impact under loading law ``law``; NaNs outside
+    the domain."""
+    w_hi = w_upper_model(eps_y, nu, extrapolate, model, law, et_ratio)
+    wm = omega_m_kernel(v, eps_y, nu, w_hi, law, et_ratio)
     if not wm >= 0.0:
         return np.nan, np.nan, np.nan, np.nan, np.nan
     if v <= V_SWITCH:
         wm1 = math.expm1(0.8 * math.log(v)) if v > 0.0 else -1.0  # w_m - 1 without cancellation
     else:
         wm1 = wm - 1.0
-    e, loss, w_res, r_res = restitution_kernel(v, wm, wm1, eps_y, nu, model)
+    e, loss, w_res, r_res = restitution_kernel(v, wm, wm1, eps_y, nu, model, law, et_ratio)
     return wm, e, loss, w_res, r_res
 
 
 @jit
-def impact_array(v, eps_y, nu, model, extrapolate, out):
+def impact_array(v, eps_y, nu, et_ratio, model, extrapolate, law, out):
     """Batch driver: out[k, i] for k in (w_m*, e, loss, w_res*, R_res/R)."""
     for i in range(v.size):
-        r = impact_kernel(v[i], eps_y[i], nu[i], model, extrapolate)
+        r = impact_kernel(v[i], eps_y[i], nu[i], model, extrapolate, law, et_ratio[i])
         for k in range(5):
             out[k, i] = r[k]
 
 
-def _solve(v1_star, eps_y, nu, unloading, extrapolate):
-    model = unloading_model(unloading).code
+def _solve(v1_star, eps_y, nu, unloading, extrapolate, et_ratio, loading):
+    model = unloading_model(unloading)
     extrapolate = check_bool(extrapolate, "extrapolate")
-    (v, eps_y, nu), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"))
+    (v, eps_y, nu, h), shape = broadcast_inputs((v1_star, "v1_star"), (eps_y, "eps_y"), (nu, "nu"),
+                                                (et_ratio, "et_ratio"))
     check_velocity(v, "v1_star")
     check_eps_y(eps_y)
     check_nu(nu)
+    law = resolve_loading(loading, h)
     warn_if_outside_validated(eps_y, nu)
+    warn_if_unfitted(model, h)
     out = np.empty((5, v.size))
     if v.size == 0:
         return out, shape
-    impact_array(v, eps_y, nu, model, bool(extrapolate), out)
+    impact_array(v, eps_y, nu, h, model.code, bool(extrapolate), law.code, out)
     bad = np.isnan(out[0])
     if np.any(bad):
-        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate, unloading=unloading)
+        raise_out_of_range(v[bad], eps_y[bad], nu[bad], extrapolate, unloading=unloading, et_ratio=h[bad],
+                           loading=law)
     if extrapolate and np.any(out[0] > OMEGA_M_STAR_MAX):
         warn(f"extrapolated past w_m* = {OMEGA_M_STAR_MAX:g}, the largest interference "
              "JGM computed; the JG law is not validated there", ExtrapolationWarning)
@@ -80,7 +86,8 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate):
 
 
 def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
-                  extrapolate: bool = False) -> float | NDArray[np.float64]:
+                  extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
+                  loading: str | None = None) -> float | NDArray[np.float64]:
     """Normalised maximum interference w_m* = omega_m/omega_c of an impact at V1* (-).
 
     Parameters
@@ -94,6 +101,11 @@ def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
         Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
     extrapolate : bool, optional
         Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1. Default False.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
+        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -137,12 +149,13 @@ def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
     ValueError: v1_star = 2000.0 gives w_m* > 425, the model's limit (JGM section 3.3); ...
     """
     # w_m* does not depend on the unloading model; Etsion's is defined wherever w_m* is
-    out, shape = _solve(v1_star, eps_y, nu, "etsion", extrapolate)
+    out, shape = _solve(v1_star, eps_y, nu, "etsion", extrapolate, et_ratio, loading)
     return shaped(out[0], shape)
 
 
 def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
-            extrapolate: bool = False) -> float | NDArray[np.float64]:
+            extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
+            loading: str | None = None) -> float | NDArray[np.float64]:
     """Coefficient of restitution e = V2/V1 (-) of an impact at V1*, by the exact solver.
 
     Parameters
@@ -161,6 +174,11 @@ def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str 
     extrapolate : bool, optional
         Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
         of eq 35 at w_m* = 10017.5). Default False.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
+        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -205,12 +223,13 @@ def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str 
     >>> direct.e_exact([0.5, 2.2], 0.005, 0.33).round(6)
     array([1.      , 0.967494])
     """
-    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate, et_ratio, loading)
     return shaped(out[1], shape)
 
 
 def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
-               extrapolate: bool = False) -> float | NDArray[np.float64]:
+               extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
+               loading: str | None = None) -> float | NDArray[np.float64]:
     """Fraction of the impact energy dissipated, 1 - e^2 (-), computed without cancellation.
 
     Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9), where 1 - e_exact(...)**2
@@ -232,6 +251,11 @@ def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: s
     extrapolate : bool, optional
         Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
         of eq 35 at w_m* = 10017.5). Default False.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
+        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -269,12 +293,13 @@ def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: s
     >>> f"{direct.loss_exact(1 + 1e-9, 0.005, 0.33):.6e}"
     '6.386087e-11'
     """
-    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate, et_ratio, loading)
     return shaped(out[2], shape)
 
 
 def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
-                   extrapolate: bool = False) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
+                   extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
+                   loading: str | None = None) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
     """Residual state after the impact: residual interference and radius of curvature (-).
 
     Parameters
@@ -293,6 +318,11 @@ def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloadin
     extrapolate : bool, optional
         Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
         of eq 35 at w_m* = 10017.5). Default False.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
+        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -332,12 +362,13 @@ def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloadin
     >>> round(w_res, 6), round(r, 6)
     (1.823254, 1.999458)
     """
-    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate, et_ratio, loading)
     return shaped(out[3], shape), shaped(out[4], shape)
 
 
 def solve(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
-          extrapolate: bool = False) -> dict[str, float | NDArray[np.float64]]:
+          extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
+          loading: str | None = None) -> dict[str, float | NDArray[np.float64]]:
     """Everything the direct solver computes for an impact, from one solve.
 
     Parameters
@@ -356,6 +387,11 @@ def solve(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = 
     extrapolate : bool, optional
         Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
         of eq 35 at w_m* = 10017.5). Default False.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
+        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -394,7 +430,7 @@ def solve(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = 
     {'omega_m_star': 6.549856, 'e': 0.828733, 'loss': 0.313202, 'omega_res_star': 1.823254,
      'R_res_ratio': 1.999458}
     """
-    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate)
+    out, shape = _solve(v1_star, eps_y, nu, unloading, extrapolate, et_ratio, loading)
     keys = ("omega_m_star", "e", "loss", "omega_res_star", "R_res_ratio")
     return {k: shaped(out[i], shape) for i, k in enumerate(keys)}
 

@@ -20,8 +20,9 @@ import math
 import numpy as np
 
 from ._jit import jit
-from .contact import W_SWITCH, area_exponent, evaluate_law, p_star_jg
+from .contact import W_SWITCH, area_exponent, evaluate_law
 from .critical import c_of_nu
+from .loading import JACKSON_GREEN, p_star_above, valid as law_valid
 
 
 __all__ = ["W_star", "loading_energy"]
@@ -38,8 +39,8 @@ V_SWITCH = W_SWITCH**1.25  # V1* at which w_m = 1.9
 
 
 @jit
-def jg_integral(w0, w1, eps_y, nu, C, B):
-    """int_{w0}^{w1} P*_JG(z) dz for 1.9 <= w0 <= w1, by Gauss-Legendre in ln z."""
+def law_integral(w0, w1, eps_y, nu, C, B, law, et_ratio):
+    """int_{w0}^{w1} P*(z) dz of loading law ``law`` for 1.9 <= w0 <= w1, by Gauss-Legendre in ln z."""
     t0 = math.log(w0)
     t1 = math.log(w1)
     n = int(math.ceil((t1 - t0) / PANEL_WIDTH))
@@ -52,23 +53,30 @@ def jg_integral(w0, w1, eps_y, nu, C, B):
         s = 0.0
         for j in range(GL_ORDER):
             z = math.exp(mid + 0.5 * h * _GL_X[j])
-            s += _GL_W[j] * z * p_star_jg(z, eps_y, nu, C, B)
+            s += _GL_W[j] * z * p_star_above(law, z, eps_y, nu, C, B, et_ratio)
         total += 0.5 * h * s
     return total
 
 
 @jit
-def f_star_kernel(w, eps_y, nu):
-    """F(w) = V1*^2 that reaches maximum interference w (loading energy / U_c); NaN past a/R = 1."""
-    if not w >= 0.0:
-        return np.nan
-    if w <= W_SWITCH:
-        return w**2.5
-    return F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
+def jg_integral(w0, w1, eps_y, nu, C, B):
+    """int_{w0}^{w1} P*_JG(z) dz for 1.9 <= w0 <= w1: :func:`law_integral` of the JG law."""
+    return law_integral(w0, w1, eps_y, nu, C, B, JACKSON_GREEN, 0.0)
 
 
 @jit
-def newton_from_below(vv, w, f, w_hi, eps_y, nu, C, B):
+def f_star_kernel(w, eps_y, nu, law, et_ratio):
+    """F(w) = V1*^2 that reaches maximum interference w (loading energy / U_c) under loading law
+    ``law``; NaN for w < 0 or an invalid law/et_ratio (the law's end is not checked)."""
+    if not (w >= 0.0 and law_valid(law, et_ratio)):
+        return np.nan
+    if w <= W_SWITCH:
+        return w**2.5
+    return F_SWITCH + 2.5 * law_integral(W_SWITCH, w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y), law, et_ratio)
+
+
+@jit
+def newton_from_below(vv, w, f, w_hi, eps_y, nu, C, B, law, et_ratio):
     """Solve F(w_m) = vv = V1*^2 (> F(1.9)) by Newton's method on ln F in t = ln w, from (w, f = F(w)).
 
     Start near the root (callers start from the Hertz solution V1*^0.8, which lies below it where
@@ -88,7 +96,7 @@ def newton_from_below(vv, w, f, w_hi, eps_y, nu, C, B):
         # ln w and ln V1* (~ulp(10) at w ~ 1e4), ~10 ulp of w_m*, which matters where e depends
         # steeply on w_m* (the end of JCG's eq 35)
         g = math.log(f / vv)
-        dt = -g * f / (2.5 * w * p_star_jg(w, eps_y, nu, C, B))
+        dt = -g * f / (2.5 * w * p_star_above(law, w, eps_y, nu, C, B, et_ratio))
         t_new = t + dt
         if t_new > hi:
             if w == w_hi:
@@ -101,19 +109,20 @@ def newton_from_below(vv, w, f, w_hi, eps_y, nu, C, B):
             w_new = min(w * math.exp(dt), w_hi)
         if abs(dt) < 1e-9:
             return w_new, w, f  # quadratic convergence: the error of w_new is ~dt^2
-        f += 2.5 * jg_integral(w, w_new, eps_y, nu, C, B)
+        f += 2.5 * law_integral(w, w_new, eps_y, nu, C, B, law, et_ratio)
         t, w = t_new, w_new
     return np.nan, w, f
 
 
 @jit
-def omega_m_kernel(v, eps_y, nu, w_hi):
-    """w_m(V1*) solving F(w_m) = V1*^2 (eq 29); NaN if V1* < 0 or w_m would exceed w_hi.
+def omega_m_kernel(v, eps_y, nu, w_hi, law, et_ratio):
+    """w_m(V1*) solving F(w_m) = V1*^2 (eq 29) under loading law ``law``; NaN if V1* < 0, w_m would
+    exceed w_hi, or the law/et_ratio is invalid.
 
     Closed form w_m = V1*^0.8 for V1* <= 1.9^1.25; above, :func:`newton_from_below` started at
     the Hertz solution V1*^0.8 (a lower bound where P*_JG < Hertz).
     """
-    if not v >= 0.0:
+    if not (v >= 0.0 and law_valid(law, et_ratio)):
         return np.nan
     if v <= V_SWITCH:
         w = min(v**0.8, W_SWITCH)  # v = 1.9^1.25 exactly would round to 1.9 + 1 ulp
@@ -127,12 +136,12 @@ def omega_m_kernel(v, eps_y, nu, w_hi):
     if t > hi:
         return np.nan
     w = min(math.exp(t), w_hi)
-    f = F_SWITCH + 2.5 * jg_integral(W_SWITCH, w, eps_y, nu, C, B)
-    return newton_from_below(v * v, w, f, w_hi, eps_y, nu, C, B)[0]
+    f = F_SWITCH + 2.5 * law_integral(W_SWITCH, w, eps_y, nu, C, B, law, et_ratio)
+    return newton_from_below(v * v, w, f, w_hi, eps_y, nu, C, B, law, et_ratio)[0]
 
 
 @jit
-def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
+def omega_m_sorted_kernel(v, eps_y, nu, w_hi, law, et_ratio, out):
     """w_m at increasing speeds v[0] <= v[1] <= ... (all > 1.9^1.25), marching one solution into the next.
 
     Much cheaper per point than :func:`omega_m_kernel` when the speeds are dense (table building).
@@ -145,16 +154,17 @@ def omega_m_sorted_kernel(v, eps_y, nu, w_hi, out):
         if not v[i] > V_SWITCH:
             out[i] = np.nan
             continue
-        out[i], w, f = newton_from_below(v[i] * v[i], w, f, w_hi, eps_y, nu, C, B)
+        out[i], w, f = newton_from_below(v[i] * v[i], w, f, w_hi, eps_y, nu, C, B, law, et_ratio)
 
 
 @jit
-def _f_star_array(w, eps_y, nu, out):
+def _f_star_array(w, eps_y, nu, et_ratio, law, out):
     for i in range(w.size):
-        out[i] = f_star_kernel(w[i], eps_y[i], nu[i])
+        out[i] = f_star_kernel(w[i], eps_y[i], nu[i], law, et_ratio[i])
 
 
-def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
+def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
+                   loading: str | None = None) -> float | NDArray[np.float64]:
     """Loading energy F(w) = 1 - (W_ep)*(w) to maximum interference w, over U_c (-).
 
     Equal to V1*^2 of the impact whose maximum interference is w (the energy balance, JGM eq 29).
@@ -168,6 +178,10 @@ def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDA
         Sy/E' (-), > 0 (validated range 0.0005-0.01).
     nu : float or array_like
         Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -180,7 +194,8 @@ def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDA
         An input is not a real number or array of them (strings, booleans, None, complex).
     ValueError
         w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1) or a
+        law that does not take it; shapes that do not broadcast.
 
     Notes
     -----
@@ -198,10 +213,11 @@ def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDA
     >>> fastrest.loading_energy(1.0, 0.005, 0.33)
     1.0
     """
-    return evaluate_law(_f_star_array, w, eps_y, nu)
+    return evaluate_law(_f_star_array, w, eps_y, nu, et_ratio, loading)
 
 
-def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
+def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
+           loading: str | None = None) -> float | NDArray[np.float64]:
     """Normalised elasto-plastic energy (W_ep)* of JGM eq (25): -(5/2) int_1^w P* dz (-).
 
     Zero at w = 1, negative above; for 0 <= w < 1 the same integral over the Hertz law, 1 - w^2.5.
@@ -216,6 +232,10 @@ def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
         Sy/E' (-), > 0 (validated range 0.0005-0.01).
     nu : float or array_like
         Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+    et_ratio : float or array_like, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -228,7 +248,8 @@ def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
         An input is not a real number or array of them (strings, booleans, None, complex).
     ValueError
         w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; shapes that do not broadcast.
+        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1) or a
+        law that does not take it; shapes that do not broadcast.
 
     Notes
     -----
@@ -243,5 +264,5 @@ def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.
     >>> fastrest.W_star(1.0, 0.005, 0.33), round(fastrest.W_star(0.5, 0.005, 0.33), 6)
     (0.0, 0.823223)
     """
-    f = loading_energy(w, eps_y, nu)
+    f = loading_energy(w, eps_y, nu, et_ratio=et_ratio, loading=loading)
     return 1.0 - f

@@ -42,7 +42,8 @@ import numpy as np
 
 from ._jit import jit
 from ._validation import as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu, real_scalar
-from .contact import W_SWITCH, area_exponent, p_star_jg
+from .contact import W_SWITCH, area_exponent
+from .loading import p_star_above
 from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import P_table_forward, forward_data
@@ -108,11 +109,12 @@ def contact_force(law, state, w):
     # field made the caller's loop ~15x slower (Numba materialises the tuple; bench/FORCE_LAW.md)
     model, eps_y, nu, w_end = law.model, law.eps_y, law.nu, law.w_max
     rows, shift, base = law.p_rows, law.shift, law.base
-    return _force_step(model, eps_y, nu, w_end, rows, shift, base, state, w)
+    loading, et_ratio = law.law, law.et_ratio
+    return _force_step(model, eps_y, nu, w_end, rows, shift, base, loading, et_ratio, state, w)
 
 
 @jit(inline=True)
-def _force_step(model, eps_y, nu, w_end, rows, shift, base, state, w):
+def _force_step(model, eps_y, nu, w_end, rows, shift, base, loading, et_ratio, state, w):
     """The body of :func:`contact_force` and :func:`contact_force_stacked`: one material's fields
     (``rows`` may hold other materials' rows too: ``base`` places this material's)."""
     w = np.float64(w)  # integer and float32 interferences (the cell index reads float64 bits)
@@ -131,7 +133,7 @@ def _force_step(model, eps_y, nu, w_end, rows, shift, base, state, w):
             return p
     elif w_max > 0.0:  # unloading or reloading below w_max: elastic, eq (32); 0 below w_res
         if state[3] == 0.0:
-            w_res, delta = _unloading.residual(model, w_max, w_max - 1.0, state[1], eps_y, nu)
+            w_res, delta = _unloading.residual(model, w_max, w_max - 1.0, state[1], eps_y, nu, loading, et_ratio)
             state[2] = w_res
             state[3] = delta
         if w > -math.inf:  # not NaN, not -inf
@@ -143,7 +145,7 @@ def _force_step(model, eps_y, nu, w_end, rows, shift, base, state, w):
 
 
 StackedLaws = namedtuple("StackedLaws", ["model", "eps_y", "nu", "w_max", "shift", "base", "p_rows",
-                                         "omega_c", "P_c"])
+                                         "omega_c", "P_c", "law", "et_ratio"])
 StackedLaws.__doc__ = """The contact laws of several materials in one Numba-friendly data: arrays indexed by material.
 
 Build it with :func:`stack_laws` (not by hand) and pass it, with a material index per contact, to
@@ -226,11 +228,13 @@ def contact_force_stacked(laws, material, state, w):
     """
     models, eps_a, nu_a, w_end_a = laws.model, laws.eps_y, laws.nu, laws.w_max
     rows, shift_a, base_a = laws.p_rows, laws.shift, laws.base
+    law_a, et_a = laws.law, laws.et_ratio
     k = material_index(material)
     if k < 0 or k >= eps_a.size:
         state[0] = state[1] = state[2] = state[3] = np.nan
         return np.nan
-    return _force_step(models[k], eps_a[k], nu_a[k], w_end_a[k], rows, shift_a[k], base_a[k], state, w)
+    return _force_step(models[k], eps_a[k], nu_a[k], w_end_a[k], rows, shift_a[k], base_a[k], law_a[k], et_a[k],
+                       state, w)
 
 
 def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
@@ -288,6 +292,8 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
     offset = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
     return StackedLaws(
         model=np.array([law.data.model for law in laws], dtype=np.int64),
+        law=np.array([law.data.law for law in laws], dtype=np.int64),
+        et_ratio=np.array([law.data.et_ratio for law in laws], dtype=np.float64),
         eps_y=np.array([law.data.eps_y for law in laws], dtype=np.float64),
         nu=np.array([law.data.nu for law in laws], dtype=np.float64),
         w_max=np.array([law.data.w_max for law in laws], dtype=np.float64),
@@ -353,7 +359,7 @@ def _law_formula(law, w):
     """P*(w) of the loading law by its formulas: Hertz up to 1.9 (eq 14), eq (9) above."""
     if w <= W_SWITCH:
         return w * math.sqrt(w)
-    return p_star_jg(w, law.eps_y, law.nu, c_of_nu(law.nu), area_exponent(law.eps_y))
+    return p_star_above(law.law, w, law.eps_y, law.nu, c_of_nu(law.nu), area_exponent(law.eps_y), law.et_ratio)
 
 
 @jit
@@ -599,7 +605,7 @@ class ContactLaw:
         """The ValueError for a V1* whose maximum interference w_m* (JGM eq 29) passes the law's end."""
         full = interference_limit(self.eps_y, self.nu, extrapolate=self.extrapolate, unloading=self.unloading)
         if self.w_max < full:
-            v_top = math.sqrt(f_star_kernel(self.w_max, self.eps_y, self.nu))
+            v_top = math.sqrt(f_star_kernel(self.w_max, self.eps_y, self.nu, self.data.law, self.data.et_ratio))
             raise ValueError(f"v1_star = {v!r} gives w_m* beyond this law's w_max = {self.w_max!r}: it takes "
                              f"0 < v1_star <= {v_top:.10g} (V1*^2 = F(w_max), JGM eq 29); build the law with a "
                              "larger w_max (contact_law(..., w_max=...))")
@@ -663,7 +669,7 @@ class ContactLaw:
         n = real_scalar(steps_per_contact, "steps_per_contact")
         if not (n.is_integer() and 10 <= n <= 1e8):
             raise ValueError(f"steps_per_contact must be a whole number in [10, 1e8]; got {steps_per_contact!r}")
-        if not omega_m_kernel(v, self.eps_y, self.nu, self.w_max) >= 0.0:  # the direct solver's rule
+        if not omega_m_kernel(v, self.eps_y, self.nu, self.w_max, self.data.law, self.data.et_ratio) >= 0.0:  # the direct solver's rule
             self._raise_too_fast(v)
         state = self.new_state()
         e, wm, steps = impact_in_time(self.data, v, int(n), check_bool(locate_switch, "locate_switch"), state)
@@ -739,7 +745,7 @@ def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float
     omega_c = float(check_finite_positive(real_scalar(omega_c, "omega_c"), "omega_c", "(m, or 1.0 for a normalised law)"))
     P_c = float(check_finite_positive(real_scalar(P_c, "P_c"), "P_c", "(N, or 1.0 for a normalised law)"))
     model = _unloading.get(unloading)
-    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model.code))
+    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model.code, 0, 0.0))
     if w_max is None:
         w_max = lim
     else:

@@ -56,13 +56,14 @@ from ._deprecation import alias, keyword_only, module_getattr
 from ._jit import jit
 from ._validation import (check_bool, check_count, check_eps_y, check_nu, real_scalar,
                           warn_if_outside_validated)
-from .contact import W_SWITCH, area_exponent, p_star_jg
+from .contact import W_SWITCH, area_exponent
 from .critical import c_of_nu
-from .energy import F_SWITCH, jg_integral
+from .energy import F_SWITCH, law_integral
+from .loading import p_star_above, resolve as resolve_loading
 from .limits import interference_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial, share_edges)
-from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
+from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code, warn_if_unfitted
 
 __all__ = ["ForwardData", "forward_data", "F_forward", "P_forward",
            "P_table_forward", "FP_table_forward", "returned_forward", "loss_forward",
@@ -73,7 +74,7 @@ __all__ = ["ForwardData", "forward_data", "F_forward", "P_forward",
 BITS_PER_OCTAVE = 5
 
 ForwardData = namedtuple("ForwardData", ["model", "eps_y", "nu", "C", "B", "w_max", "shift", "base",
-                                         "f_rows", "p_rows"])
+                                         "f_rows", "p_rows", "law", "et_ratio"])
 ForwardData.__doc__ = """Numba-friendly forward map of one material (see :func:`forward_data`).
 
 Build it with :func:`forward_data` (or :func:`fastrest.contact_law`, as ``law.data``), not by
@@ -100,6 +101,10 @@ f_rows : ndarray
 p_rows : ndarray
     The same for P* (used by :func:`P_table_forward`, :func:`FP_table_forward` and
     :func:`fastrest.jit.contact_force`).
+law : int
+    Loading law code (:mod:`fastrest.loading`): 0 = Jackson-Green, 1 = Ghaednia et al. (2019).
+et_ratio : float
+    Tangent modulus over Young's modulus Et/E (-); 0 for Jackson-Green.
 
 Examples
 --------
@@ -114,8 +119,8 @@ Examples
 
 @jit(inline=True)
 def _p_jg(data, w):
-    """JG branch of P* (eq 9) for this material: :func:`fastrest.contact.p_star_jg`."""
-    return p_star_jg(w, data.eps_y, 0.0, data.C, data.B)
+    """P* above the switch (JG eq 9, or the hardening law) for this material, exact formula."""
+    return p_star_above(data.law, w, data.eps_y, data.nu, data.C, data.B, data.et_ratio)
 
 
 # --- scalar kernels (call these from @njit code) -----------------------------------------------
@@ -361,6 +366,7 @@ def forward_values_excess(data, w, w1):
     """
     # fields read up front: a field read inside a rarely taken branch slows the caller's loop
     model, eps_y, nu, w_max = data.model, data.eps_y, data.nu, data.w_max
+    law, et_ratio = data.law, data.et_ratio
     if not (w >= 0.0 and w <= w_max and model >= 0 and model < N_MODELS):
         return np.nan, np.nan, np.nan, np.nan
     if w <= W_SWITCH:
@@ -372,7 +378,7 @@ def forward_values_excess(data, w, w1):
     if w1 <= 0.0:
         return f, p, f, 0.0  # elastic
     # the unloading model's energy split of an impact whose loading energy is f
-    e2, loss, _, _, _ = restitution(model, f, w, w1, p, eps_y, nu)
+    e2, loss, _, _, _ = restitution(model, f, w, w1, p, eps_y, nu, law, et_ratio)
     return f, p, e2 * f, loss * f
 
 
@@ -446,23 +452,23 @@ def loss_forward(data, w):
 # --- building ----------------------------------------------------------------------------------
 
 @jit
-def _p_nodes(nodes, eps_y, nu, out):
+def _p_nodes(nodes, eps_y, nu, law, et_ratio, out):
     C = c_of_nu(nu)
     B = area_exponent(eps_y)
     for i in range(nodes.size):
-        out[i] = p_star_jg(nodes[i], eps_y, nu, C, B)
+        out[i] = p_star_above(law, nodes[i], eps_y, nu, C, B, et_ratio)
 
 
 @jit
-def _f_march(nodes, eps_y, nu, out):
-    """F at increasing nodes (all > 1.9): one pass of jg_integral with Neumaier summation."""
+def _f_march(nodes, eps_y, nu, law, et_ratio, out):
+    """F at increasing nodes (all > 1.9): one pass of law_integral with Neumaier summation."""
     C = c_of_nu(nu)
     B = area_exponent(eps_y)
     s = F_SWITCH
     comp = 0.0
     w_prev = W_SWITCH
     for i in range(nodes.size):
-        inc = 2.5 * jg_integral(w_prev, nodes[i], eps_y, nu, C, B)
+        inc = 2.5 * law_integral(w_prev, nodes[i], eps_y, nu, C, B, law, et_ratio)
         t = s + inc
         if abs(s) >= abs(inc):
             comp += (s - t) + inc
@@ -479,7 +485,8 @@ def _is_number(x):
 
 @keyword_only("w_max", old=lambda args: _is_number(args[2]))
 def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float, extrapolate: bool = False,
-                 bits_per_octave: int = BITS_PER_OCTAVE) -> ForwardData:
+                 bits_per_octave: int = BITS_PER_OCTAVE, et_ratio: float = 0.0,
+                 loading: str | None = None) -> ForwardData:
     """Tabulate the forward map of one material up to interference ``w_max``.
 
     Parameters
@@ -501,6 +508,10 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     bits_per_octave : int, optional
         Cells per octave of w are 2^bits_per_octave, a whole number in [1, 10]; default
         :data:`BITS_PER_OCTAVE` (5: ~5e-15 relative on F).
+    et_ratio : float, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -548,13 +559,17 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     if not (math.isfinite(w_max) and w_max >= 0.0):
         raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
     extrapolate = check_bool(extrapolate, "extrapolate")
-    lim = float(w_upper_model(eps_y, nu, extrapolate, model))  # the unloading model may end first
+    et_ratio = real_scalar(et_ratio, "et_ratio")
+    law = resolve_loading(loading, et_ratio)
+    warn_if_unfitted(unloading, et_ratio)
+    lim = float(w_upper_model(eps_y, nu, extrapolate, model, law.code, et_ratio))  # the unloading model may end first
     if w_max > lim:
         raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max", unloading)
     C, B = float(c_of_nu(nu)), float(area_exponent(eps_y))
     shift = MANTISSA_BITS - bits_per_octave
     if w_max <= W_SWITCH:  # closed forms only: one dummy cell
-        return ForwardData(model, eps_y, nu, C, B, w_max, shift, 0, np.zeros((1, 8)), np.zeros((1, 8)))
+        return ForwardData(model, eps_y, nu, C, B, w_max, shift, 0, np.zeros((1, 8)), np.zeros((1, 8)), law.code,
+                           et_ratio)
     base, edges = cell_edges(W_SWITCH, w_max, bits_per_octave)
     # Serve whole bit-cells: the last cell ends at its natural boundary, not at w_max, so a table
     # built for a larger w_max holds bit-identical rows for every w both cover.
@@ -563,12 +578,12 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     nodes = chebyshev_nodes(edges)
     flat = np.ascontiguousarray(nodes.ravel())
     f_vals = np.empty(nodes.size)
-    _f_march(flat, eps_y, nu, f_vals)
+    _f_march(flat, eps_y, nu, law.code, et_ratio, f_vals)
     p_vals = np.empty(nodes.size)
-    _p_nodes(flat, eps_y, nu, p_vals)
+    _p_nodes(flat, eps_y, nu, law.code, et_ratio, p_vals)
     f_rows = np.ascontiguousarray(fit_cells(edges, share_edges(f_vals.reshape(nodes.shape))))
     p_rows = np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
-    return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows)
+    return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows, law.code, et_ratio)
 
 
 def _forward_limit(eps_y, nu, *, extrapolate=False):

@@ -25,6 +25,7 @@ from ._jit import jit
 from ._validation import OMEGA_M_STAR_MAX, check_bool, check_eps_y, check_nu, real_scalar
 from .contact import omega_star_limit_kernel, past_law_end
 from .energy import f_star_kernel
+from . import loading as _loading
 from . import unloading as _unloading
 
 __all__ = ["OMEGA_M_STAR_MAX", "Limit", "limit"]
@@ -33,21 +34,23 @@ EXTRAPOLATE_HINT = "Pass extrapolate=True to compute beyond it (up to a/R = 1) w
 
 
 @jit
-def w_upper(eps_y, nu, extrapolate):
-    """Largest w* of the loading law: 425, or with extrapolation the point where a/R = 1."""
-    lim = omega_star_limit_kernel(eps_y, nu)
+def w_upper(eps_y, nu, extrapolate, law, et_ratio):
+    """Largest w* of loading law ``law``: 425, or with extrapolation the law's end (a/R = 1);
+    NaN for an invalid law/et_ratio."""
+    lim = _loading.omega_end(law, eps_y, nu, et_ratio)
     if extrapolate:
         return lim
     return min(OMEGA_M_STAR_MAX, lim)
 
 
 @jit
-def w_upper_model(eps_y, nu, extrapolate, model):
+def w_upper_model(eps_y, nu, extrapolate, model, law, et_ratio):
     """:func:`w_upper`, and no further than unloading model ``model`` is defined (NaN if unknown)."""
     end = _unloading.omega_end(model)
-    if not end > 0.0:
+    lim = w_upper(eps_y, nu, extrapolate, law, et_ratio)
+    if not (end > 0.0 and lim > 0.0):
         return np.nan
-    return min(w_upper(eps_y, nu, extrapolate), end)
+    return min(lim, end)
 
 
 def _code(unloading):
@@ -78,7 +81,8 @@ class Limit(NamedTuple):
     v1_star: float
 
 
-def limit(eps_y: float, nu: float, unloading: str | None = None, *, extrapolate: bool = False) -> Limit:
+def limit(eps_y: float, nu: float, unloading: str | None = None, *, extrapolate: bool = False,
+          et_ratio: float = 0.0, loading: str | None = None) -> Limit:
     """Where the model ends for one material: the largest w_m* and the largest V1* it accepts.
 
     The one function for the model's limits. (:func:`fastrest.omega_star_limit` is the contact
@@ -96,6 +100,11 @@ def limit(eps_y: float, nu: float, unloading: str | None = None, *, extrapolate:
         which matters only with ``extrapolate=True``). None (default): the loading law alone.
     extrapolate : bool, optional
         False (default): no further than w_m* = 425 (JGM section 3.3). True: up to a/R = 1 (eq 12).
+    et_ratio : float, optional
+        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``. Both laws end
+        at the same w* (docs/model.md section 12); the speed that reaches it differs.
 
     Returns
     -------
@@ -129,28 +138,38 @@ def limit(eps_y: float, nu: float, unloading: str | None = None, *, extrapolate:
     >>> round(fastrest.limit(0.0005, 0.33, "jcg", extrapolate=True).omega_m_star, 4)  # end of eq (35)
     10017.5236
     """
-    w = interference_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)  # validates
-    return Limit(w, _speed_at(w, eps_y, nu))
+    w = interference_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading, et_ratio=et_ratio,
+                           loading=loading)  # validates
+    return Limit(w, _speed_at(w, eps_y, nu, et_ratio, loading))
 
 
-def interference_limit(eps_y, nu, *, extrapolate=False, unloading=None):
+def _law(loading, et_ratio):
+    h = real_scalar(et_ratio, "et_ratio")
+    return _loading.resolve(loading, h), h
+
+
+def interference_limit(eps_y, nu, *, extrapolate=False, unloading=None, et_ratio=0.0, loading=None):
     """``limit(...).omega_m_star`` without the speed (for fastrest's own callers): validates, and
     returns the largest w_m* (a float)."""
     e, n = real_scalar(eps_y, "eps_y"), real_scalar(nu, "nu")
     check_eps_y(e)
     check_nu(n)
     x = check_bool(extrapolate, "extrapolate")
-    return float(w_upper(e, n, x) if unloading is None else w_upper_model(e, n, x, _code(unloading)))
+    law, h = _law(loading, et_ratio)
+    return float(w_upper(e, n, x, law.code, h) if unloading is None
+                 else w_upper_model(e, n, x, _code(unloading), law.code, h))
 
 
-def speed_limit(eps_y, nu, *, extrapolate=False, unloading=None):
+def speed_limit(eps_y, nu, *, extrapolate=False, unloading=None, et_ratio=0.0, loading=None):
     """``limit(...).v1_star`` (for fastrest's own callers): validates, and returns the largest V1*."""
-    w = interference_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading)  # validates
-    return _speed_at(w, eps_y, nu)
+    w = interference_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading, et_ratio=et_ratio,
+                           loading=loading)  # validates
+    return _speed_at(w, eps_y, nu, et_ratio, loading)
 
 
-def _speed_at(w, eps_y, nu):
-    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu))) if w < math.inf else math.inf
+def _speed_at(w, eps_y, nu, et_ratio=0.0, loading=None):
+    law, h = _law(loading, et_ratio)
+    return math.sqrt(f_star_kernel(w, float(eps_y), float(nu), law.code, h)) if w < math.inf else math.inf
 
 
 __getattr__ = module_getattr(__name__)
@@ -163,7 +182,7 @@ def _past_law(lead, e, n, w_ar, at):
 
 
 def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None, V_c=None,
-                       hint=EXTRAPOLATE_HINT):
+                       hint=EXTRAPOLATE_HINT, et_ratio=0.0, loading=None):
     """Raise the ValueError for the first impact speed beyond the allowed range.
 
     The one place that says which limit applies (w_m* = 425, a/R = 1, the end of the unloading
@@ -171,7 +190,9 @@ def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None
     the caller's parameter they came from (e.g. ``v_max``); ``hint`` ends the w_m* = 425 message.
     """
     v, e, n = float(np.ravel(v)[0]), float(np.ravel(eps_y)[0]), float(np.ravel(nu)[0])
+    h = float(np.ravel(et_ratio)[0])
     lead = f"{name} = {v!r}" if V_c is None else f"{name} = {v!r} m/s"
+    law = dict(et_ratio=h, loading=loading)
 
     def at(v_star):
         return f"V1* = {v_star:.10g}" if V_c is None else f"V1 = {v_star * V_c:.10g} m/s (V1* = {v_star:.6g})"
@@ -180,17 +201,17 @@ def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None
     if unloading is not None:
         model = _unloading.get(unloading)
         if model.omega_end < w_ar and (extrapolate or model.omega_end < OMEGA_M_STAR_MAX):
-            lim = speed_limit(e, n, extrapolate=extrapolate, unloading=model)
+            lim = speed_limit(e, n, extrapolate=extrapolate, unloading=model, **law)
             if (v if V_c is None else v / V_c) > lim:
                 raise ValueError(
                     f"{lead} is past the end of {model.short} unloading ({model.equation}) for "
                     f"eps_y = {e!r}, nu = {n!r}: its w_res reaches w_m at w_m* = {model.omega_end:.6g}, "
                     f"i.e. {at(lim)}, and e is undefined beyond (other unloading models go on to a/R = 1)")
     if extrapolate or w_ar <= OMEGA_M_STAR_MAX:
-        raise _past_law(lead, e, n, w_ar, f", i.e. {at(speed_limit(e, n, extrapolate=True))}")
+        raise _past_law(lead, e, n, w_ar, f", i.e. {at(speed_limit(e, n, extrapolate=True, **law))}")
     raise ValueError(
         f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
-        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(speed_limit(e, n))}. {hint}")
+        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(speed_limit(e, n, **law))}. {hint}")
 
 
 def interference_limit_message(w, eps_y, nu, extrapolate, unloading=None):

@@ -190,7 +190,7 @@ def figure4(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = 
             label=r"JCG fit, eq (35): $1.02\,[1 - ((\omega_m^*+5.9)/6.9)^{-0.54}]$")
     we = omega_grid(eps_y, nu, 1.0, n)
     p = np.asarray(P_star(we, eps_y, nu))
-    r_ets = np.array([etsion.residual(w, w - 1.0, pm, eps_y, nu)[0] / w for w, pm in zip(we, p)])
+    r_ets = np.array([etsion.residual(w, w - 1.0, pm, eps_y, nu, 0, 0.0)[0] / w for w, pm in zip(we, p)])
     ax.plot(we, r_ets, color=COLOURS["etsion"], lw=1.4, ls="--",
             label=rf"Etsion et al., eq (33) ($\varepsilon_y$ = {eps_y:g}, $\nu$ = {nu:g})")
     ax.axvline(1.9, color="k", lw=0.8, ls=":")

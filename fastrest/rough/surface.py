@@ -355,7 +355,7 @@ class RoughSurface:
         lies at or below the tallest). Such an impact is certainly past the model's range; below
         the bound the solver finds out (and says so) itself."""
         w_end = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
-        cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu)  # over U_c
+        cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu, 0, 0.0)  # over U_c
         over = e_hi > cap
         if not np.any(over):
             return

@@ -24,6 +24,7 @@ from ..critical import c_of_nu
 from ..energy import F_SWITCH, jg_integral, omega_m_sorted_kernel
 from ..interpolation import DEGREE, share_edges
 from ..limits import speed_limit
+from ..loading import JACKSON_GREEN
 from ..unloading import N_MODELS, restitution_kernel
 from ..cells import jg_nodes
 from .axes import cell_layout, energy_eps_y_axis, eps_y_blocks, nu_axis, omega_axis, v1_star_top
@@ -126,11 +127,11 @@ def quantity_rows_array(eps_row, nu_nodes, v_nodes, out):
         # material whose own w_m* <= 425): there the formulas serve as a smooth extension.
         w_hi = 4.0 * OMEGA_M_STAR_MAX
         w = np.empty(v_nodes.size)
-        omega_m_sorted_kernel(v_nodes, eps_y, nu, w_hi, w)
+        omega_m_sorted_kernel(v_nodes, eps_y, nu, w_hi, JACKSON_GREEN, 0.0, w)  # tables: JG only
         for k in range(v_nodes.size):
             out[0, j, k] = w[k]
             for m in range(N_MODELS):
-                e, loss, _, _ = restitution_kernel(v_nodes[k], w[k], w[k] - 1.0, eps_y, nu, m)
+                e, loss, _, _ = restitution_kernel(v_nodes[k], w[k], w[k] - 1.0, eps_y, nu, m, JACKSON_GREEN, 0.0)
                 out[1 + 2 * m, j, k] = e
                 out[2 + 2 * m, j, k] = loss
 

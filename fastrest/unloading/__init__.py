@@ -5,10 +5,11 @@ A model is a module of this package with
 * ``NAME``, ``SHORT``, ``LABEL``, ``EQUATION``, ``REFERENCE``: its public name and citation;
 * ``OMEGA_END``: the w_m* where the model itself ends (``inf`` if it does not), and ``CELLS_END``:
   how far curves may tabulate it (short of an end where e behaves like a square root);
-* ``residual(wm, wm1, p, eps_y, nu) -> (w_res*, delta)``: the residual interference after loading
-  to w_m* = wm (wm1 = w_m* - 1 computed without cancellation, p = P_m*), delta = w_m* - w_res*;
-* ``restitution(f, wm, wm1, p, eps_y, nu) -> (e^2, 1 - e^2, w_res*, delta, R_res/R)`` for an
-  impact of loading energy f = F(w_m*) = V1*^2 past the elastic limit (w_m* > 1);
+* ``residual(wm, wm1, p, eps_y, nu, law, et_ratio) -> (w_res*, delta)``: the residual
+  interference after loading to w_m* = wm (wm1 = w_m* - 1 computed without cancellation,
+  p = P_m*) under loading law ``law`` (:mod:`fastrest.loading`), delta = w_m* - w_res*;
+* ``restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio) -> (e^2, 1 - e^2, w_res*, delta, R_res/R)``
+  for an impact of loading energy f = F(w_m*) = V1*^2 past the elastic limit (w_m* > 1);
 
 all ``@jit(inline=True)`` scalar kernels. Unloading and reloading below w_m* follow eq (32) through
 (w_m*, P_m*) and w_res* (:mod:`fastrest.unloading.elastic`), the same for every model here.
@@ -27,7 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._jit import jit
-from ..contact import p_star_unchecked
+from .._validation import ValidityWarning, warn
+from ..loading import p_star_unchecked, valid as law_valid
 from . import brake, elastic, etsion, jcg
 
 __all__ = ["UnloadingModel", "MODELS", "NAMES", "JCG", "ETSION", "BRAKE", "get"]
@@ -59,6 +61,9 @@ class UnloadingModel:
         w_m* at which the model ends (``inf`` if never): past it e is undefined.
     cells_end : float
         Largest w_m* a curve tabulates (the cells cannot follow e near an end).
+    fits_hardening : bool
+        Whether the model is meant for strain-hardening materials (Brake); the others were fitted
+        to elastic-perfectly plastic finite elements and warn (ValidityWarning) when Et/E > 0.
 
     Notes
     -----
@@ -82,10 +87,12 @@ class UnloadingModel:
     reference: str
     omega_end: float
     cells_end: float
+    fits_hardening: bool = False
 
 
 #: The registered models by name, in code order: {"jcg": UnloadingModel(...), "etsion": ..., ...}.
-MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END), float(u.CELLS_END))
+MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END),
+                                  float(u.CELLS_END), bool(u.FITS_HARDENING))
           for k, u in enumerate(_UNITS)}
 #: Public names in code order.
 NAMES = tuple(MODELS)
@@ -131,6 +138,16 @@ def get(unloading: str | UnloadingModel) -> UnloadingModel:
     raise ValueError(f"unloading must be one of {NAMES}; got {unloading!r}")
 
 
+def warn_if_unfitted(model, et_ratio):
+    """ValidityWarning where a model fitted to elastic-perfectly plastic finite elements (JCG, Etsion)
+    unloads a hardening material (any Et/E > 0): it is used as it stands, an extrapolation; Brake's,
+    the peers' pairing with Ghaednia et al. (2019), is not warned about."""
+    if not get(model).fits_hardening and np.any(np.asarray(et_ratio) > 0.0):
+        warn(f"{get(model).short} unloading was fitted to elastic-perfectly plastic finite elements; with "
+             f"strain hardening (Et/E > 0) it is an extrapolation (unloading='brake' is the pairing the "
+             f"hardening law's peers use)", ValidityWarning)
+
+
 def unloading_code(unloading):
     """The kernels' integer code of the model called ``unloading`` (ValueError if unknown)."""
     return get(unloading).code
@@ -139,26 +156,26 @@ def unloading_code(unloading):
 # --- the dispatchers: the one place that maps a code to its unit ----------------------------------
 
 @jit(inline=True)
-def residual(code, wm, wm1, p, eps_y, nu):
+def residual(code, wm, wm1, p, eps_y, nu, law, et_ratio):
     """(w_res*, delta = w_m* - w_res*) of model ``code`` after loading to (wm, p); NaNs if unknown."""
     if code == JCG:
-        return jcg.residual(wm, wm1, p, eps_y, nu)
+        return jcg.residual(wm, wm1, p, eps_y, nu, law, et_ratio)
     if code == ETSION:
-        return etsion.residual(wm, wm1, p, eps_y, nu)
+        return etsion.residual(wm, wm1, p, eps_y, nu, law, et_ratio)
     if code == BRAKE:
-        return brake.residual(wm, wm1, p, eps_y, nu)
+        return brake.residual(wm, wm1, p, eps_y, nu, law, et_ratio)
     return np.nan, np.nan
 
 
 @jit(inline=True)
-def restitution(code, f, wm, wm1, p, eps_y, nu):
+def restitution(code, f, wm, wm1, p, eps_y, nu, law, et_ratio):
     """(e^2, 1 - e^2, w_res*, delta, R_res/R) of model ``code`` (w_m* > 1); NaNs if unknown."""
     if code == JCG:
-        return jcg.restitution(f, wm, wm1, p, eps_y, nu)
+        return jcg.restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio)
     if code == ETSION:
-        return etsion.restitution(f, wm, wm1, p, eps_y, nu)
+        return etsion.restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio)
     if code == BRAKE:
-        return brake.restitution(f, wm, wm1, p, eps_y, nu)
+        return brake.restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio)
     return np.nan, np.nan, np.nan, np.nan, np.nan
 
 
@@ -175,7 +192,7 @@ def omega_end(code):
 
 
 @jit
-def restitution_kernel(v, wm, wm1, eps_y, nu, model):
+def restitution_kernel(v, wm, wm1, eps_y, nu, model, law, et_ratio):
     """(e, 1 - e^2, w_res*, R_res/R) at impact speed v = V1* with maximum interference wm.
 
     ``wm1`` is wm - 1 computed accurately by the caller; V1* <= 1 (wm1 <= 0) is elastic: e = 1.
@@ -184,8 +201,9 @@ def restitution_kernel(v, wm, wm1, eps_y, nu, model):
     if not (wm >= 0.0 and v >= 0.0):
         return np.nan, np.nan, np.nan, np.nan
     if wm1 <= 0.0:
-        if not (model >= 0 and model < N_MODELS):
+        if not (model >= 0 and model < N_MODELS and law_valid(law, et_ratio)):
             return np.nan, np.nan, np.nan, np.nan
         return 1.0, 0.0, 0.0, 1.0
-    e2, loss, w_res, _, r_res = restitution(model, v * v, wm, wm1, p_star_unchecked(wm, eps_y, nu), eps_y, nu)
+    p = p_star_unchecked(law, wm, eps_y, nu, et_ratio)
+    e2, loss, w_res, _, r_res = restitution(model, v * v, wm, wm1, p, eps_y, nu, law, et_ratio)
     return math.sqrt(e2), loss, w_res, r_res

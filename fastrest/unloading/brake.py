@@ -21,7 +21,8 @@ from .._jit import jit
 from . import elastic
 
 #: The unit's interface, read by the registry (fastrest/unloading/__init__.py).
-__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "residual",
+__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "FITS_HARDENING",
+           "residual",
            "restitution"]
 
 NAME = "brake"
@@ -33,15 +34,17 @@ REFERENCE = ("Brake M.R.W. (2015) An analytical elastic plastic contact model wi
              "equations as implemented in tmdsimpy (tmd-lab)")
 OMEGA_END = math.inf
 CELLS_END = math.inf  # curves may tabulate up to the loading law's end
+#: Meant for strain-hardening materials (Brake 2015 is); False: fitted to elastic-perfectly plastic FE.
+FITS_HARDENING = True
 
 
 @jit(inline=True)
-def residual(wm, wm1, p, eps_y, nu):
+def residual(wm, wm1, p, eps_y, nu, law, et_ratio):
     """(w_res*, w_m* - w_res*) after loading to w_m* (p = P_m*)."""
     return elastic.area_residual(wm, p, wm)
 
 
 @jit(inline=True)
-def restitution(f, wm, wm1, p, eps_y, nu):
+def restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio):
     """(e^2, 1 - e^2, w_res*, delta, R_res/R) for loading energy f = F(w_m*) = V1*^2 (f > 1)."""
     return elastic.area_restitution(f, wm, p, wm)

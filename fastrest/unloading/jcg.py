@@ -20,7 +20,8 @@ from ..contact import W_SWITCH
 from . import elastic
 
 #: The unit's interface, read by the registry (fastrest/unloading/__init__.py).
-__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "residual",
+__all__ = ["NAME", "SHORT", "LABEL", "EQUATION", "REFERENCE", "OMEGA_END", "CELLS_END", "FITS_HARDENING",
+           "residual",
            "restitution", "residual_ratio", "residual_ratios"]
 
 NAME = "jcg"
@@ -40,6 +41,8 @@ GAP_FROM_END = 600.0
 #: which piecewise polynomials in V1* cannot follow; up to 0.6 OMEGA_END they keep ~1e-13
 #: (measured, tests/test_accuracy_bounds.py). The direct solver goes on to OMEGA_END.
 CELLS_END = 0.6 * OMEGA_END
+#: Meant for strain-hardening materials (Brake 2015 is); False: fitted to elastic-perfectly plastic FE.
+FITS_HARDENING = False
 
 
 @jit(inline=True)
@@ -66,14 +69,14 @@ def residual_ratios(wm, wm1):
 
 
 @jit(inline=True)
-def residual(wm, wm1, p, eps_y, nu):
+def residual(wm, wm1, p, eps_y, nu, law, et_ratio):
     """(w_res*, w_m* - w_res*) after loading to w_m* (wm1 = w_m* - 1, p = P_m*)."""
     r, gap = residual_ratios(wm, wm1)
     return r * wm, gap * wm
 
 
 @jit(inline=True)
-def restitution(f, wm, wm1, p, eps_y, nu):
+def restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio):
     """(e^2, 1 - e^2, w_res*, delta, R_res/R) for loading energy f = F(w_m*) = V1*^2 (f > 1)."""
     r, gap = residual_ratios(wm, wm1)
     w_res = r * wm
