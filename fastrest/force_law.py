@@ -43,7 +43,8 @@ import numpy as np
 from ._jit import jit
 from ._validation import as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu, real_scalar
 from .contact import W_SWITCH, area_exponent
-from .loading import p_star_above
+from . import loading as _loading
+from .loading import p_star_above, resolve as resolve_loading
 from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import P_table_forward, forward_data
@@ -478,6 +479,10 @@ class ContactLaw:
         Material (-).
     unloading : str
         Unloading model name.
+    et_ratio : float
+        Tangent modulus over Young's modulus Et/E (-) of the loading law (0: elastic-perfectly plastic).
+    loading : str
+        Loading law name (:mod:`fastrest.loading`): ``"jackson-green"`` or ``"ghaednia"``.
     w_max : float
         Largest interference w* = omega/omega_c the law serves (-).
     omega_c, P_c : float
@@ -507,6 +512,8 @@ class ContactLaw:
         self.eps_y, self.nu, self.unloading, self.extrapolate = eps_y, nu, unloading, extrapolate
         self.data, self.omega_c, self.P_c = data, float(omega_c), float(P_c)
         self.w_max = data.w_max
+        self.et_ratio = float(data.et_ratio)
+        self.loading = _loading.NAMES[data.law]
 
     def __repr__(self) -> str:
         units = "" if self.omega_c == 1.0 and self.P_c == 1.0 else f", omega_c={self.omega_c!r} m, P_c={self.P_c!r} N"
@@ -681,7 +688,7 @@ class ContactLaw:
 
 
 def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float | None = None, extrapolate: bool = False,
-                omega_c: float = 1.0, P_c: float = 1.0) -> ContactLaw:
+                omega_c: float = 1.0, P_c: float = 1.0, et_ratio: float = 0.0, loading: str | None = None) -> ContactLaw:
     """Build the time-domain :class:`ContactLaw` of one material (normalised: w = omega/omega_c,
     P* = P/P_c).
 
@@ -745,7 +752,9 @@ def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float
     omega_c = float(check_finite_positive(real_scalar(omega_c, "omega_c"), "omega_c", "(m, or 1.0 for a normalised law)"))
     P_c = float(check_finite_positive(real_scalar(P_c, "P_c"), "P_c", "(N, or 1.0 for a normalised law)"))
     model = _unloading.get(unloading)
-    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model.code, 0, 0.0))
+    et_ratio = real_scalar(et_ratio, "et_ratio")
+    law = resolve_loading(loading, et_ratio)
+    lim = float(w_upper_model(eps_y, nu, bool(extrapolate), model.code, law.code, et_ratio))
     if w_max is None:
         w_max = lim
     else:
@@ -754,5 +763,6 @@ def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float
             raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
         if w_max > lim:
             raise_interference_out_of_range(w_max, eps_y, nu, extrapolate, "w_max", model.name)
-    data = forward_data(eps_y, nu, model.name, w_max=w_max, extrapolate=bool(extrapolate))
+    data = forward_data(eps_y, nu, model.name, w_max=w_max, extrapolate=bool(extrapolate), et_ratio=et_ratio,
+                        loading=law.name)
     return ContactLaw(eps_y, nu, model.name, bool(extrapolate), data, omega_c, P_c)
