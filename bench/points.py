@@ -83,7 +83,7 @@ def reference(ps):
     out = {}
     for m, tag in ((JCG, "jcg"), (ETSION, "etsion")):
         sol = np.empty((5, ps.size))
-        impact_array(ps.v, ps.eps_y, ps.nu, m, False, sol)
+        impact_array(ps.v, ps.eps_y, ps.nu, np.zeros_like(ps.v), m, False, 0, sol)
         if m == JCG:
             out["omega_m"] = sol[0]
         out["e_" + tag] = sol[1]

@@ -149,7 +149,7 @@ def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
     ValueError: v1_star = 2000.0 gives w_m* > 425, the model's limit (JGM section 3.3); ...
     """
     # w_m* does not depend on the unloading model; Etsion's is defined wherever w_m* is
-    out, shape = _solve(v1_star, eps_y, nu, "etsion", extrapolate, et_ratio, loading)
+    out, shape = _solve(v1_star, eps_y, nu, "brake", extrapolate, et_ratio, loading)  # w_m* alone: any model that never ends
     return shaped(out[0], shape)
 
 

@@ -26,7 +26,7 @@ def grid_file(tmp_path_factory):
 
 def _direct(v, e, n, model):
     out = np.empty((5, v.size))
-    impact_array(v, e, n, model, False, out)
+    impact_array(v, e, n, np.zeros_like(v), model, False, 0, out)
     return out
 
 

@@ -58,8 +58,8 @@ def test_unknown_model_is_the_same_value_error_everywhere(bad):
 
 @numba.njit
 def _dispatch(code):
-    r = unloading.restitution(code, 30.0, 5.0, 4.0, 9.0, 0.005, 0.33)
-    w_res, delta = unloading.residual(code, 5.0, 4.0, 9.0, 0.005, 0.33)
+    r = unloading.restitution(code, 30.0, 5.0, 4.0, 9.0, 0.005, 0.33, 0, 0.0)
+    w_res, delta = unloading.residual(code, 5.0, 4.0, 9.0, 0.005, 0.33, 0, 0.0)
     return r[0], r[1], w_res, delta, unloading.omega_end(code)
 
 
@@ -68,8 +68,8 @@ def test_jit_dispatch_covers_every_registered_model_and_nan_for_unknown():
         assert np.all(np.isfinite(_dispatch(code)[:4])), code
     for code in (-1, len(NAMES), 99):
         assert np.all(np.isnan(_dispatch(code)))
-        assert all(math.isnan(x) for x in unloading.restitution_kernel(3.0, 2.5, 1.5, 0.005, 0.33, code))
-        assert all(math.isnan(x) for x in unloading.restitution_kernel(0.5, 0.57, -0.43, 0.005, 0.33, code))
+        assert all(math.isnan(x) for x in unloading.restitution_kernel(3.0, 2.5, 1.5, 0.005, 0.33, code, 0, 0.0))
+        assert all(math.isnan(x) for x in unloading.restitution_kernel(0.5, 0.57, -0.43, 0.005, 0.33, code, 0, 0.0))
 
 
 def test_jit_table_and_forward_nan_for_unknown_code():

@@ -15,6 +15,7 @@ from .._placement import JUMP, place_rows, scaled_error as _err
 from .._provenance import provenance
 from .._validation import check_count, real_scalar
 from ..direct import impact_array
+from ..loading import JACKSON_GREEN
 from ..limits import speed_limit
 from .. import unloading as _unloading
 from .grid import QUANTITIES
@@ -185,7 +186,7 @@ def measure(grid, n_points=20000, *, seed=2014):
     ref = {}
     sol = np.empty((5, v.size))
     for m in range(nm):
-        impact_array(v, e, n, m, False, sol)
+        impact_array(v, e, n, np.zeros_like(v), m, False, JACKSON_GREEN, sol)
         ref["omega_m"] = sol[0].copy()
         ref[f"e_{_unloading.NAMES[m]}"] = sol[1].copy()
         ref[f"loss_{_unloading.NAMES[m]}"] = sol[2].copy()

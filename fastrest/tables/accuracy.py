@@ -36,6 +36,7 @@ import numpy as np
 from .._deprecation import keyword_only
 from .._validation import warn
 from ..direct import impact_array
+from ..loading import JACKSON_GREEN
 from ..energy import V_SWITCH
 from ..limits import speed_limit
 from .grid import QUANTITIES, normalise_grid
@@ -194,7 +195,7 @@ def _reference(table, v, e, n, models=None):
         if models is not None and m not in models:
             continue
         sol = np.empty((5, v.size))
-        impact_array(v, e, n, m, False, sol)
+        impact_array(v, e, n, np.zeros_like(v), m, False, JACKSON_GREEN, sol)
         ref[0], ref[1 + 2 * m], ref[2 + 2 * m] = sol[0], sol[1], sol[2]
     return ref
 
