@@ -35,6 +35,8 @@ from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array
 from .curve_data import build_curve_data, curve_array, curve_value
 from .fastpath import fast_scalar
 from .limits import speed_limit
+from .loading import LAWS, resolve as resolve_loading
+from .unloading import get as unloading_model, warn_if_unfitted
 
 if TYPE_CHECKING:
     # not bound at run time: fastrest.curve.CurveData is a deprecated alias (module __getattr__)
@@ -168,6 +170,12 @@ class Curve:
         Unloading model name of the data.
     data : CurveData
         From :func:`build_curve_data` (not checked against the other parameters).
+    et_ratio : float, optional
+        Tangent modulus over Young's modulus Et/E (-) the data was built for, keyword-only
+        (default 0: elastic-perfectly plastic).
+    loading : str, optional
+        Loading law of the data (:mod:`fastrest.loading`), keyword-only; None: the default for
+        ``et_ratio`` (Jackson-Green at 0, Ghaednia et al. 2019 above).
 
     Attributes
     ----------
@@ -175,6 +183,10 @@ class Curve:
         Material parameters (-).
     unloading : str
         ``"jcg"`` (eq 35), ``"etsion"`` (eq 33) or ``"brake"``.
+    et_ratio : float
+        Et/E (-); 0 without strain hardening.
+    loading : str
+        The loading law's name, ``"jackson-green"`` or ``"ghaednia"``.
     v_max : float
         Largest V1* tabulated (-).
     v_limit : float
@@ -185,6 +197,7 @@ class Curve:
     Notes
     -----
     Evaluates JGM eqs (29) (w_m*) and (16), (38) (e) from degree-5 cells (:func:`curve_value`).
+    The repr shows ``et_ratio`` and ``loading`` only where they are not the default.
 
     Examples
     --------
@@ -194,10 +207,17 @@ class Curve:
     (20.0, 1.0)
     """
 
-    def __init__(self, eps_y: float, nu: float, unloading: str, data: CurveData) -> None:
+    #: Read by curves pickled before hardening existed.
+    et_ratio: float = 0.0
+    loading: str = LAWS["jackson-green"].name
+
+    def __init__(self, eps_y: float, nu: float, unloading: str, data: CurveData, *, et_ratio: float = 0.0,
+                 loading: str | None = None) -> None:
         self.eps_y, self.nu, self.unloading, self.data = eps_y, nu, unloading, data
+        self.et_ratio = real_scalar(et_ratio, "et_ratio")
+        self.loading = resolve_loading(loading, self.et_ratio).name
         self.v_max = data.v_max
-        self.v_limit = speed_limit(eps_y, nu)
+        self.v_limit = speed_limit(eps_y, nu, et_ratio=self.et_ratio, loading=self.loading)
         self._packed = [_pack(data, what, rows)
                         for what, rows in enumerate((data.omega_rows, data.e_rows, data.loss_rows))]
         self._entry = _scalar_entry()
@@ -213,7 +233,10 @@ class Curve:
         self._entry = _scalar_entry()
 
     def __repr__(self) -> str:
-        return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
+        law = f", et_ratio={self.et_ratio!r}" if self.et_ratio != 0.0 else ""
+        if self.loading != resolve_loading(None, self.et_ratio).name:
+            law += f", loading={self.loading!r}"
+        return (f"Curve(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}{law}, "
                 f"v_max={self.v_max!r}, cells={self.data.e_rows.shape[0]})")
 
     def _eval(self, what, v):
@@ -295,7 +318,7 @@ class _ExtrapolatedCurve(Curve):
 
 
 def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | None = None,
-          extrapolate: bool = False) -> Curve:
+          extrapolate: bool = False, et_ratio: float = 0.0, loading: str | None = None) -> Curve:
     """Build a :class:`Curve`: the model for one material, fast, up to the speed a scene needs.
 
     Parameters
@@ -311,6 +334,12 @@ def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | Non
         larger value raises ValueError naming the limit.
     extrapolate : bool
         Allow w_m* > 425 up to a/R = 1 (ExtrapolationWarning), keyword-only.
+    et_ratio : float
+        Tangent modulus over Young's modulus Et/E (-) of the yielding material, 0 <= et_ratio < 1,
+        keyword-only. Default 0: elastic-perfectly plastic (JGM). Above 0 the loading law is
+        Ghaednia et al. (2019) (:mod:`fastrest.loading.ghaednia`); V1* stays V1/V_c of JGM eq (28).
+    loading : {None, "jackson-green", "ghaednia"}
+        Loading law (:mod:`fastrest.loading`), keyword-only; None picks it from ``et_ratio``.
 
     Returns
     -------
@@ -322,15 +351,17 @@ def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | Non
     Raises
     ------
     TypeError
-        eps_y, nu or v_max is not a real number; extrapolate is not a bool.
+        eps_y, nu, v_max or et_ratio is not a real number; extrapolate is not a bool.
     ValueError
-        eps_y <= 0, nu outside [0, 0.5), unknown ``unloading``, or v_max past the model's limit
+        eps_y <= 0, nu outside [0, 0.5), et_ratio outside [0, 1), unknown ``unloading`` or
+        ``loading``, ``loading="jackson-green"`` with et_ratio > 0, or v_max past the model's limit
         (w_m* = 425, or a/R = 1 with ``extrapolate``); the message names the parameter and limit.
 
     Warns
     -----
     ValidityWarning
-        eps_y or nu outside the validated range (0.0005-0.01, 0.2-0.45).
+        eps_y or nu outside the validated range (0.0005-0.01, 0.2-0.45); JCG or Etsion unloading
+        with et_ratio > 0 (fitted without hardening; Brake's is the hardening law's pairing).
     ExtrapolationWarning
         With ``extrapolate=True``, when the curve extends past w_m* = 425.
 
@@ -345,7 +376,21 @@ def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | Non
     >>> c = fastrest.curve(0.005, 0.33, v_max=200.0)
     >>> c.e([1.0, 20.0, 200.0]).round(4).tolist()
     [1.0, 0.7463, 0.4461]
+
+    A material with strain hardening, Et/E = 0.01 (Brake unloading, the hardening law's pairing):
+
+    >>> h = fastrest.curve(0.005, 0.33, "brake", v_max=200.0, et_ratio=0.01)
+    >>> h
+    Curve(eps_y=0.005, nu=0.33, unloading='brake', et_ratio=0.01, v_max=200.0, cells=280)
+    >>> bool(h.e(20.0) > fastrest.curve(0.005, 0.33, "brake", v_max=200.0).e(20.0))
+    True
     """
+    return _curve(eps_y, nu, unloading, v_max, extrapolate, et_ratio, loading, True)
+
+
+def _curve(eps_y, nu, unloading, v_max, extrapolate, et_ratio, loading, warn_unfitted):
+    """:func:`curve`; ``warn_unfitted=False`` leaves the warning of JCG/Etsion unloading with
+    hardening to the caller (a scene warns once, not once per material)."""
     eps_y = real_scalar(eps_y, "eps_y")
     nu = real_scalar(nu, "nu")
     extrapolate = check_bool(extrapolate, "extrapolate")
@@ -353,9 +398,16 @@ def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | Non
     check_nu(nu)
     if v_max is not None:
         v_max = float(check_velocity(real_scalar(v_max, "v_max"), "v_max"))
+    et_ratio = real_scalar(et_ratio, "et_ratio")
+    law = resolve_loading(loading, et_ratio).name  # validates et_ratio and loading
+    model = unloading_model(unloading)
     warn_if_outside_validated(eps_y, nu)
-    data = build_curve_data(eps_y, nu, unloading, v_max=v_max, extrapolate=extrapolate)
-    c = (_ExtrapolatedCurve if speed_limit(eps_y, nu) < data.v_max else Curve)(eps_y, nu, unloading, data)
+    if warn_unfitted:
+        warn_if_unfitted(model, et_ratio)
+    data = build_curve_data(eps_y, nu, unloading, v_max=v_max, extrapolate=extrapolate, et_ratio=et_ratio,
+                            loading=law)
+    cls = _ExtrapolatedCurve if speed_limit(eps_y, nu, et_ratio=et_ratio, loading=law) < data.v_max else Curve
+    c = cls(eps_y, nu, unloading, data, et_ratio=et_ratio, loading=law)
     if c.v_limit < data.v_max:
         warn(f"curve extends past w_m* = {OMEGA_M_STAR_MAX:g} (V1* = {c.v_limit:.6g}) to "
              f"V1* = {data.v_max:.6g}: extrapolated there; evaluations past it warn too", ExtrapolationWarning)

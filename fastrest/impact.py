@@ -30,6 +30,7 @@ from ._validation import (EDGE_TOL, EPS_Y_VALIDATED, NU_VALIDATED, ValidityWarni
 from .critical import (critical_area, critical_energy, critical_force, critical_interference,
                        critical_velocity, effective_mass, effective_modulus, effective_radius)
 from .limits import raise_out_of_range, speed_limit
+from .loading import LAWS, LoadingLaw, resolve as resolve_loading
 from .materials import UNITS_HINT, Material, implausible, poisson_factor
 
 __all__ = ["Impact"]
@@ -53,6 +54,9 @@ class Impact:
     mass : float, optional
         Mass of the moving body (kg). Default: the sphere's mass (4/3) pi R^3 rho from
         ``sphere.rho``. Against a fixed flat this is the sphere's mass (JGM Table 1: m = 0.0327 kg).
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        Loading law (:mod:`fastrest.loading`), keyword-only. None (default): Jackson-Green where the
+        yielding body has ``Et = 0``, Ghaednia et al. (2019) where it hardens (``Et > 0``).
 
     Sphere on sphere: use :meth:`Impact.two_spheres`, which sets R_eff = R1 R2 / (R1 + R2) and
     the reduced mass m1 m2 / (m1 + m2) (standard two-body reduction; JGM do not state it).
@@ -63,6 +67,10 @@ class Impact:
         The inputs (``flat`` None for a rigid flat).
     yielding : Material
         The body that yields first.
+    et_ratio : float
+        Et/E of the yielding body (-): the hardening parameter passed to the normalised API.
+    loading : str
+        The loading law's name, ``"jackson-green"`` or ``"ghaednia"``.
     E_eff : float
         Effective modulus E' (Pa).
     R_eff : float
@@ -78,7 +86,8 @@ class Impact:
     ValueError
         R or mass not finite and > 0; no mass given and ``sphere.rho`` is None; neither body can
         yield (Sy = inf for both); inputs so extreme that a critical value is not a finite, normal
-        double (the message names it).
+        double (the message names it); an unknown ``loading``, or ``loading="jackson-green"`` with a
+        hardening yielding body.
 
     Warns
     -----
@@ -95,6 +104,13 @@ class Impact:
     from :mod:`fastrest.critical`), and the restitution methods on top of
     :mod:`fastrest.direct` (eqs 16, 29-38). Instances pickle.
 
+    Strain hardening: the yielding body's ``Et`` gives ``et_ratio`` = Et/E of that body, and every
+    method passes it, with the loading law, to the normalised API. The law (Ghaednia et al. 2019)
+    takes E/Sy as (1 - nu^2)/eps_y: exact for a sphere on a rigid flat, JGM's equivalent sphere
+    (E' of both bodies) otherwise. JCG and Etsion unloading were fitted to elastic-perfectly
+    plastic finite elements: with ``et_ratio > 0`` they warn once per call (ValidityWarning);
+    ``unloading="brake"`` is the pairing the law's peers use.
+
     Examples
     --------
     JGM Table 1 (steel sphere, R = 10 mm, m = 32.7 g, on a rigid flat):
@@ -106,15 +122,28 @@ class Impact:
     (0.00499, 0.05155)
     >>> round(imp.e(1.0), 6)  # at 1 m/s
     0.750144
+
+    A hardening steel (tangent modulus 2 GPa, Et/E = 0.01) rebounds a little more:
+
+    >>> hard = fastrest.Material(200e9, 0.33, 1.12e9, Et=2e9)
+    >>> imp_h = fastrest.Impact(hard, 0.01, mass=0.0327)
+    >>> imp_h.et_ratio, imp_h.loading
+    (0.01, 'ghaednia')
+    >>> round(imp_h.e(1.0, "brake"), 6) > round(imp.e(1.0, "brake"), 6)
+    True
     """
 
-    def __init__(self, sphere: Material, R: float, flat: Material | None = None, mass: float | None = None) -> None:
+    #: Read by instances pickled before hardening existed (their yielding body has Et = 0).
+    _law: LoadingLaw = LAWS["jackson-green"]
+
+    def __init__(self, sphere: Material, R: float, flat: Material | None = None, mass: float | None = None, *,
+                 loading: str | None = None) -> None:
         self._init(sphere, real_scalar(R, "R"), flat, None, mass,
-                   names=("sphere", "flat", "R", None, "mass" if mass is not None else None))
+                   names=("sphere", "flat", "R", None, "mass" if mass is not None else None), loading=loading)
 
     @classmethod
     def two_spheres(cls, sphere1: Material, R1: float, sphere2: Material, R2: float, mass1: float | None = None,
-                    mass2: float | None = None) -> Impact:
+                    mass2: float | None = None, *, loading: str | None = None) -> Impact:
         """An impact of two free spheres; V1 is then their relative normal speed.
 
         Parameters
@@ -125,6 +154,8 @@ class Impact:
             Their radii (m), finite and > 0.
         mass1, mass2 : float, optional
             Their masses (kg), finite and > 0. Default: (4/3) pi R^3 rho from the material's rho.
+        loading : {None, "jackson-green", "ghaednia"}, optional
+            Loading law, keyword-only (see :class:`Impact`).
 
         Returns
         -------
@@ -137,7 +168,7 @@ class Impact:
             A sphere is not a :class:`fastrest.Material`; a radius or mass not a single real number.
         ValueError
             A radius or mass not finite and > 0; a mass missing where the material has no rho;
-            neither body can yield.
+            neither body can yield; a ``loading`` the yielding body's ``Et`` rules out.
 
         Notes
         -----
@@ -166,10 +197,10 @@ class Impact:
                              "double: check the units (kg)")
         self = cls.__new__(cls)
         self._init(sphere1, real_scalar(R1, "R1"), sphere2, real_scalar(R2, "R2"), m,
-                   names=("sphere1", "sphere2", "R1", "R2", "mass1" if m1 <= m2 else "mass2"))
+                   names=("sphere1", "sphere2", "R1", "R2", "mass1" if m1 <= m2 else "mass2"), loading=loading)
         return self
 
-    def _init(self, sphere, R1, other, R2, mass, names):
+    def _init(self, sphere, R1, other, R2, mass, names, loading=None):
         if not isinstance(sphere, Material):
             raise TypeError(f"sphere must be a fastrest.Material, got {type(sphere).__name__}")
         if other is not None and not isinstance(other, Material):
@@ -186,6 +217,7 @@ class Impact:
         if math.isinf(yielding.Sy):
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
+        self._law = resolve_loading(loading, yielding.et_ratio, name="Et/E of the yielding body")
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
         self._check_scales(sphere, R1, other, R2, names)
         self._warn_validity()
@@ -255,6 +287,20 @@ class Impact:
         """eps_y = Sy / E' (-), JGM eq (11)."""
         return self.Sy / self.E_eff
 
+    @property
+    def et_ratio(self) -> float:
+        """Et/E of the material that yields first (-), 0 for elastic-perfectly plastic."""
+        return self.yielding.et_ratio
+
+    @property
+    def loading(self) -> str:
+        """The loading law's name (:mod:`fastrest.loading`): ``"jackson-green"`` or ``"ghaednia"``."""
+        return self._law.name
+
+    def _law_kw(self):
+        """The hardening keywords of the normalised API for this impact."""
+        return dict(et_ratio=self.et_ratio, loading=self._law.name)
+
     # --- critical values, eqs (4), (6), (7), (23), (28) ---
     @property
     def omega_c(self) -> float:
@@ -313,7 +359,8 @@ class Impact:
 
     def __repr__(self) -> str:
         flat = "rigid flat" if self.flat is None else repr(self.flat)
-        return f"Impact(sphere={self.sphere!r}, R_eff={self.R_eff!r}, flat={flat}, mass={self.mass!r})"
+        law = "" if self._law == resolve_loading(None, self.et_ratio) else f", loading={self._law.name!r}"
+        return f"Impact(sphere={self.sphere!r}, R_eff={self.R_eff!r}, flat={flat}, mass={self.mass!r}{law})"
 
     # --- dimensional restitution API (eqs 16, 29-38) ---
     def V_max(self, unloading: str = "jcg", *, extrapolate: bool = False) -> float:
@@ -355,7 +402,7 @@ class Impact:
         >>> round(imp.V_max(), 4), round(imp.V_max(extrapolate=True), 4)  # m/s
         (52.7211, 199.2743)
         """
-        return speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * self.V_c
+        return speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading, **self._law_kw()) * self.V_c
 
     def v1_star(self, V1: ArrayLike, unloading: str | None = None, *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Normalised impact speed V1* = V1 / V_c (-), JGM eq (28).
@@ -397,11 +444,12 @@ class Impact:
         V = check_velocity(V1, "V1", "(m/s)")
         v = V / self.V_c
         # a few ulp of slack: V_max() itself (lim * V_c / V_c) must pass; the solver decides there
-        over = v > speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading) * (1.0 + 1e-12)
+        law = self._law_kw()
+        over = v > speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading, **law) * (1.0 + 1e-12)
         if np.any(over):
             try:
                 raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", unloading,
-                                   V_c=self.V_c)
+                                   V_c=self.V_c, **law)
             except ValueError as exc:
                 hints = self._unit_hints()
                 more = (f" (implausible for solids: {'; '.join(hints)}; {UNITS_HINT})"
@@ -432,7 +480,8 @@ class Impact:
         Warns
         -----
         ValidityWarning
-            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45.
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
+            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
         ExtrapolationWarning
             With ``extrapolate=True``, past w_m* = 425.
 
@@ -449,7 +498,7 @@ class Impact:
         19.2188
         """
         return direct.omega_m_exact(self.v1_star(V1, extrapolate=extrapolate), self.eps_y, self.nu,
-                                   extrapolate=extrapolate) * self.omega_c
+                                   extrapolate=extrapolate, **self._law_kw()) * self.omega_c
 
     def omega_m(self, V1: ArrayLike, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Deprecated name of :meth:`max_interference` (metres, unlike the dimensionless
@@ -521,14 +570,16 @@ class Impact:
         Warns
         -----
         ValidityWarning
-            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45.
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
+            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
         ExtrapolationWarning
             With ``extrapolate=True``, past w_m* = 425.
 
         Notes
         -----
         :func:`fastrest.direct.e_exact` at V1* = V1/V_c (eq 30): e^2 = P_m* (w_m* - w_res*)/V1*^2
-        from eqs (29), (32), (38) and the unloading model (eq 35, eqs 33-34 or Brake's).
+        from eqs (29), (32), (38) and the unloading model (eq 35, eqs 33-34 or Brake's), with this
+        impact's ``et_ratio`` and ``loading``.
 
         Examples
         --------
@@ -538,7 +589,7 @@ class Impact:
         0.7132
         """
         return direct.e_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
-                             unloading=unloading, extrapolate=extrapolate)
+                             unloading=unloading, extrapolate=extrapolate, **self._law_kw())
 
     def rebound_velocity(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Rebound speed V2 = e V1 (m/s) for impact speed V1 (m/s).
@@ -611,7 +662,8 @@ class Impact:
         Warns
         -----
         ValidityWarning
-            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45.
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
+            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
 
         Notes
         -----
@@ -630,7 +682,7 @@ class Impact:
         from .force_law import contact_law
 
         return contact_law(self.eps_y, self.nu, unloading, extrapolate=extrapolate, omega_c=self.omega_c,
-                           P_c=self.P_c)
+                           P_c=self.P_c, **self._law_kw())
 
     def residual(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
         """Residual interference omega_res (m) and residual radius R_res (m), JGM eqs (33)-(36).
@@ -669,7 +721,7 @@ class Impact:
         (7.6978, 29.1037)
         """
         w_res, r_ratio = direct.residual_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y,
-                                              self.nu, unloading=unloading, extrapolate=extrapolate)
+                                              self.nu, unloading=unloading, extrapolate=extrapolate, **self._law_kw())
         return w_res * self.omega_c, r_ratio * self.R_eff
 
 

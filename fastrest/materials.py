@@ -176,7 +176,8 @@ def critical_velocity_ratios(nu: ArrayLike) -> dict[str, float | NDArray[np.floa
 
 @dataclass(frozen=True)
 class Material:
-    """An isotropic elastic-perfectly plastic material (SI units).
+    """An isotropic elastic-plastic material (SI units): elastic-perfectly plastic, or with linear
+    strain hardening of tangent modulus ``Et``.
 
     Parameters
     ----------
@@ -189,11 +190,18 @@ class Material:
         (e.g. the alumina spheres of JGM Tables 3-4).
     rho : float, optional
         Density (kg/m^3), finite and > 0; needed only to compute a sphere's mass.
+    Et : float, optional
+        Tangent modulus of linear strain hardening (Pa), 0 <= Et < E. Default 0: elastic-perfectly
+        plastic, JGM's material (every number exactly as without ``Et``). Above 0 an
+        :class:`fastrest.Impact` whose yielding body this is loads by Ghaednia et al. (2019)
+        (:mod:`fastrest.loading.ghaednia`) with Et/E = ``et_ratio``.
 
     Attributes
     ----------
-    E, nu, Sy, rho : float
+    E, nu, Sy, rho, Et : float
         The inputs as Python floats (``rho`` may be None). The instance is frozen and pickles.
+    et_ratio : float
+        Et/E (-), the hardening parameter of the normalised API.
 
     Raises
     ------
@@ -201,7 +209,8 @@ class Material:
         A parameter is not a single real number (strings, booleans, None except for ``rho``,
         arrays).
     ValueError
-        E not finite and > 0; nu outside [0, 0.5); Sy not > 0 or NaN; rho not finite and > 0.
+        E not finite and > 0; nu outside [0, 0.5); Sy not > 0 or NaN; rho not finite and > 0;
+        Et negative, NaN, or not below E.
 
     Warns
     -----
@@ -212,9 +221,9 @@ class Material:
 
     Notes
     -----
-    Elastic-perfectly plastic (no hardening, no rate effects: docs/model.md section 8), as JGM
-    assume. The critical values of an impact (eqs 4-7, 23-28) need two bodies: see
-    :class:`fastrest.Impact`.
+    Elastic-perfectly plastic (``Et = 0``, as JGM assume) or bilinear hardening (``Et > 0``); no rate
+    effects (docs/model.md section 8). The critical values of an impact (eqs 4-7, 23-28) need two
+    bodies: see :class:`fastrest.Impact`. The repr shows ``Et`` only when it is not 0.
 
     Examples
     --------
@@ -228,6 +237,14 @@ class Material:
     Traceback (most recent call last):
         ...
     ValueError: nu (Poisson's ratio) must be in [0, 0.5); got 0.5
+
+    With strain hardening (tangent modulus 2 GPa, Et/E = 0.01):
+
+    >>> hard = fastrest.Material(200e9, 0.33, 1.12e9, rho=7850.0, Et=2e9)
+    >>> hard.et_ratio
+    0.01
+    >>> hard
+    Material(E=200000000000.0, nu=0.33, Sy=1120000000.0, rho=7850.0, Et=2000000000.0)
 
     A modulus in GPa instead of Pa warns:
 
@@ -243,12 +260,16 @@ class Material:
     nu: float
     Sy: float
     rho: float | None = None
+    Et: float = 0.0  # a class attribute too: pickles from before Et existed read 0 (no hardening)
 
     def __post_init__(self) -> None:
         # store plain floats: a string or a 1-element array here would fail far from its cause
-        for name in ("E", "nu", "Sy") + (("rho",) if self.rho is not None else ()):
+        for name in ("E", "nu", "Sy") + (("rho",) if self.rho is not None else ()) + ("Et",):
             object.__setattr__(self, name, real_scalar(getattr(self, name), name))
         check_finite_positive(self.E, "E", "(Pa)")
+        if not 0.0 <= self.Et < self.E:  # also NaN
+            raise ValueError(f"Et (tangent modulus, Pa) must be >= 0 and below E = {self.E!r} Pa; got {self.Et!r}")
+        object.__setattr__(self, "Et", self.Et + 0.0)  # -0.0 -> 0.0
         check_nu(self.nu)
         if not (self.Sy > 0) or math.isnan(self.Sy):
             raise ValueError(f"Sy must be > 0 (Pa) (math.inf for a body that never yields); got {self.Sy!r}")
@@ -261,6 +282,22 @@ class Material:
             bad = [f"Sy/E = {ratio:.3g} is {'below' if ratio < lo else 'above'} {lo if ratio < lo else hi:g}"]
         if bad:
             _warn_caller(f"Material: {'; '.join(bad)}, implausible for a solid; {UNITS_HINT}")
+
+    def __repr__(self) -> str:
+        et = f", Et={self.Et!r}" if self.Et != 0.0 else ""
+        return f"Material(E={self.E!r}, nu={self.nu!r}, Sy={self.Sy!r}, rho={self.rho!r}{et})"
+
+    @property
+    def et_ratio(self) -> float:
+        """Et/E (-): the tangent modulus over Young's modulus, 0 for elastic-perfectly plastic.
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> fastrest.Material(200e9, 0.33, 1.12e9).et_ratio, fastrest.Material(200e9, 0.33, 1.12e9, Et=1e10).et_ratio
+        (0.0, 0.05)
+        """
+        return self.Et / self.E
 
     @property
     def yield_product(self) -> float:

@@ -1,6 +1,6 @@
 """Scenes: the curves of several materials, evaluated per point by material index.
 
-:func:`scene` builds one :class:`~fastrest.curve.Curve` per (eps_y, nu), each only as far as its
+:func:`scene` builds one :class:`~fastrest.curve.Curve` per (eps_y, nu[, et_ratio]), each only as far as its
 ``v_max``, and concatenates their cells into one :class:`SceneData`: the Hertz-range rows once
 (they are the same for every material, :mod:`fastrest.cells`), then each material's JG rows. A
 point with material index k is evaluated by :func:`scene_value`, the curves' own rule
@@ -27,9 +27,9 @@ from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array
                           kernel_array, warn)
 from ._validation import short_repr as _short
 from .cells import N_HERTZ
-from .curve import Curve, curve
+from .curve import Curve, _curve
 from .curve_data import curve_value
-from .unloading import unloading_code
+from .unloading import get as unloading_model, warn_if_unfitted
 
 __all__ = ["SceneData", "material_index", "scene_value", "scene_array", "Scene", "scene"]
 
@@ -272,7 +272,8 @@ class Scene:
     Parameters
     ----------
     curves : sequence of Curve
-        One curve per material, all with the same unloading model and cells per octave.
+        One curve per material, all with the same unloading model and cells per octave (their
+        loading laws and et_ratio may differ).
 
     Attributes
     ----------
@@ -391,15 +392,17 @@ class Scene:
         loss = _quantity_method(2)
 
 
-def scene(materials: Sequence[tuple[float, float]], unloading: str = "jcg", *, v_max: float | None = None,
-          extrapolate: bool = False) -> Scene:
+def scene(materials: Sequence[tuple[float, ...]], unloading: str = "jcg", *, v_max: float | None = None,
+          extrapolate: bool = False, loading: str | None = None) -> Scene:
     """Build a :class:`Scene` from (eps_y, nu) pairs: one curve per material, only as far as needed.
 
     Parameters
     ----------
-    materials : sequence of (eps_y, nu)
+    materials : sequence of (eps_y, nu) or (eps_y, nu, et_ratio)
         Material parameters (-) of each material index 0, 1, ...: Sy/E' > 0 and Poisson's ratio
-        0 <= nu < 0.5 (validated ranges 0.0005-0.01 and 0.2-0.45).
+        0 <= nu < 0.5 (validated ranges 0.0005-0.01 and 0.2-0.45), and optionally the tangent
+        modulus ratio Et/E, 0 <= et_ratio < 1 (strain hardening, :func:`fastrest.curve`; default 0).
+        Pairs and triples may be mixed.
     unloading : {"jcg", "etsion", "brake"}
         Unloading model of every material, JGM eq (35), (33) or Brake's (:mod:`fastrest.unloading`).
     v_max : float or sequence of float, optional
@@ -407,6 +410,9 @@ def scene(materials: Sequence[tuple[float, float]], unloading: str = "jcg", *, v
         material's w_m* = 425).
     extrapolate : bool
         Allow w_m* > 425 up to a/R = 1 (ExtrapolationWarning), keyword-only.
+    loading : {None, "jackson-green", "ghaednia"}
+        Loading law of every material (:mod:`fastrest.loading`), keyword-only; None: each
+        material's default for its et_ratio (Jackson-Green at 0, Ghaednia et al. 2019 above).
 
     Returns
     -------
@@ -418,13 +424,14 @@ def scene(materials: Sequence[tuple[float, float]], unloading: str = "jcg", *, v
     TypeError
         A material parameter or v_max is not a real number.
     ValueError
-        A material that is not an (eps_y, nu) pair, v_max of the wrong length, or anything
-        :func:`fastrest.curve` refuses (the message names the parameter).
+        A material that is not an (eps_y, nu) pair or (eps_y, nu, et_ratio) triple, v_max of the
+        wrong length, or anything :func:`fastrest.curve` refuses (the message names the parameter).
 
     Warns
     -----
     ValidityWarning
-        A material outside the validated range.
+        A material outside the validated range; JCG or Etsion unloading with a hardening material
+        (once per scene).
     ExtrapolationWarning
         With ``extrapolate=True``, a material whose curve extends past w_m* = 425.
 
@@ -438,16 +445,23 @@ def scene(materials: Sequence[tuple[float, float]], unloading: str = "jcg", *, v
     >>> s = fastrest.scene([(0.005, 0.33), (0.002, 0.3)], v_max=[300.0, 200.0])
     >>> s.e([20.0, 20.0], [0, 1]).round(4).tolist()
     [0.7463, 0.7472]
+
+    The second material hardening (Et/E = 0.01), with Brake unloading:
+
+    >>> s = fastrest.scene([(0.005, 0.33), (0.005, 0.33, 0.01)], "brake", v_max=100.0)
+    >>> s.e([20.0, 20.0], [0, 1]).round(4).tolist()
+    [0.8598, 0.8649]
     """
-    materials = _sequence(materials, "materials", "a sequence of (eps_y, nu) pairs")
+    what = "an (eps_y, nu) pair or (eps_y, nu, et_ratio) triple"
+    materials = _sequence(materials, "materials", "a sequence of (eps_y, nu) pairs or (eps_y, nu, et_ratio) triples")
     if not materials:
         raise ValueError("materials is empty: a scene needs at least one material")
     for k, m in enumerate(materials):
         if isinstance(m, (str, bytes, bytearray, dict)) or not isinstance(m, Iterable):
-            raise TypeError(f"materials[{k}] must be an (eps_y, nu) pair, got {_short(m)} ({type(m).__name__})")
-        if np.ndim(m) != 1 or len(m) != 2:
-            raise ValueError(f"materials[{k}] must be an (eps_y, nu) pair; got {_short(m)}")
-    unloading_code(unloading)
+            raise TypeError(f"materials[{k}] must be {what}, got {_short(m)} ({type(m).__name__})")
+        if np.ndim(m) != 1 or len(m) not in (2, 3):
+            raise ValueError(f"materials[{k}] must be {what}; got {_short(m)}")
+    model = unloading_model(unloading)
     if v_max is None:
         vm: list[Any] = [None] * len(materials)
     else:
@@ -456,11 +470,13 @@ def scene(materials: Sequence[tuple[float, float]], unloading: str = "jcg", *, v
             raise ValueError(f"v_max must be one number or one per material ({len(materials)}); got shape {v.shape}")
         vm = np.broadcast_to(v, (len(materials),)).tolist()
     curves = []
-    for k, ((e, n), v) in enumerate(zip(materials, vm)):
+    for k, (m, v) in enumerate(zip(materials, vm)):
+        e, n, h = tuple(m) + ((0.0,) if len(m) == 2 else ())
         try:
-            curves.append(curve(e, n, unloading, v_max=v, extrapolate=extrapolate))
+            curves.append(_curve(e, n, unloading, v, extrapolate, h, loading, False))
         except (TypeError, ValueError) as exc:  # name the scene's parameter, then curve's words
             raise type(exc)(f"materials[{k}] = {_short(tuple(materials[k]))}: {exc}") from None
+    warn_if_unfitted(model, [c.et_ratio for c in curves])  # once for the scene
     return Scene(curves)
 
 

@@ -10,6 +10,11 @@ outside ``fma`` are that subtraction and product, u*u, (u*u)*(u*u), (V1* - 1) * 
 none can be contracted into an fma by a compiler, so the C results equal the Python path's
 bit for bit (tests/test_export_c.py compares 1e5+ points, cell boundaries included).
 
+A material may harden: ``EPS_Y:NU:ET_RATIO`` (or a triple (eps_y, nu, et_ratio), or a pair with
+``Et``) tabulates the Ghaednia et al. (2019) loading law with Et/E = et_ratio (:func:`fastrest.curve`);
+the header's opening comment then records each material's et_ratio and loading law. A header of
+materials without hardening is unchanged, byte for byte.
+
 Built from material pairs in SI units (:func:`impact_materials`: the options and ``--pairs`` file of
 ``fastrest export velocity``), the header also holds each pair's critical values (V_c, omega_c,
 P_c, A_c, U_c, E', R', mass) and ``fastrest_v1_star(k, V)``, V (m/s) -> V1* = V/V_c.
@@ -28,17 +33,19 @@ if TYPE_CHECKING:
     from ..impact import Impact
 import math
 import os
+import textwrap
 
 import numpy as np
 
-from .._validation import real_scalar
+from .._validation import ValidityWarning, real_scalar, warn
 from ..cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ
-from ..curve import curve
+from ..curve import _curve
 from ..curve_data import build_curve_data
 from ..energy import V_SWITCH
 from ..impact import Impact
 from ..interpolation import ROW
 from ..limits import limit
+from ..loading import resolve as resolve_loading
 from .. import unloading as _unloading
 from ._io import check_target, provenance, write_files
 
@@ -53,22 +60,24 @@ CRITICAL_KEYS = {"V_c": "m/s", "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": 
                  "R_eff": "m", "mass": "kg", "Sy": "Pa", "C": "-"}
 
 
-def parse_materials(items: Sequence[str], option: str = "materials") -> list[tuple[float, float]]:
-    """[(eps_y, nu), ...] from ``EPS_Y:NU`` strings; ValueError naming ``option`` otherwise."""
+def parse_materials(items: Sequence[str], option: str = "materials") -> list[tuple[float, ...]]:
+    """[(eps_y, nu), ...] from ``EPS_Y:NU`` strings, (eps_y, nu, et_ratio) from ``EPS_Y:NU:ET_RATIO``
+    (Et/E, strain hardening); ValueError naming ``option`` otherwise."""
     if isinstance(items, (str, bytes)) or not hasattr(items, "__len__"):
         raise TypeError(f"{option} must be a list of 'EPS_Y:NU' strings, got {type(items).__name__}")
     if len(items) > MAX_MATERIALS:
         raise ValueError(f"{option}: at most {MAX_MATERIALS} materials in one header; got {len(items)}")
-    out = []
+    out: list[tuple[float, ...]] = []
     for s in items:
         parts = str(s).split(":")
         try:
-            if len(parts) != 2:
+            if len(parts) not in (2, 3):
                 raise ValueError
-            e, n = float(parts[0]), float(parts[1])
+            m = tuple(float(x) for x in parts)
         except ValueError:
-            raise ValueError(f"{option}: expected EPS_Y:NU (e.g. 0.005:0.33); got {s!r}") from None
-        out.append((e, n))
+            raise ValueError(f"{option}: expected EPS_Y:NU or EPS_Y:NU:ET_RATIO (e.g. 0.005:0.33, "
+                             f"0.005:0.33:0.01); got {s!r}") from None
+        out.append(m)
     if not out:
         raise ValueError(f"{option}: give at least one EPS_Y:NU material")
     return out
@@ -80,17 +89,23 @@ def _check_materials(materials):
     if not 1 <= len(materials) <= MAX_MATERIALS:
         raise ValueError(f"materials must hold 1 to {MAX_MATERIALS} (eps_y, nu) pairs; got {len(materials)}")
     for k, m in enumerate(materials):
-        if isinstance(m, (str, bytes)) or not hasattr(m, "__len__") or len(m) != 2:
-            raise TypeError(f"materials[{k}] must be an (eps_y, nu) pair, got {m!r}")
+        if isinstance(m, (str, bytes)) or not hasattr(m, "__len__") or len(m) not in (2, 3):
+            raise TypeError(f"materials[{k}] must be an (eps_y, nu) pair or (eps_y, nu, et_ratio) triple, got {m!r}")
 
 
-def scene_curves(materials: Sequence[tuple[float, float]], v_max: float | None = None,
+def _triple(m):
+    """(eps_y, nu, et_ratio) of a material given as a pair or a triple."""
+    return tuple(m) if len(m) == 3 else (m[0], m[1], 0.0)
+
+
+def scene_curves(materials: Sequence[tuple[float, ...]], v_max: float | None = None,
                  option: str = "v_max") -> list[Any]:
     """Curve data per (material, unloading model): list over materials of lists over model codes.
 
     Each material's curve reaches ``v_max`` (a V1*; or a list of one V1* or None per material), by
     default its own w_m* = 425 speed; ``materials`` holds 1 to :data:`MAX_MATERIALS` (eps_y, nu)
-    pairs.
+    pairs or (eps_y, nu, et_ratio) triples (strain hardening, Et/E; one ValidityWarning for the
+    header where one hardens: JCG and Etsion unloading were fitted without hardening).
     """
     _check_materials(materials)
     if isinstance(v_max, (list, tuple)):
@@ -105,14 +120,28 @@ def scene_curves(materials: Sequence[tuple[float, float]], v_max: float | None =
             if not (top > 0 and math.isfinite(top)):
                 raise ValueError(f"{option} must be a finite V1* > 0; got {top!r}")
     out = []
-    for k, ((e, n), v_max) in enumerate(zip(materials, tops)):
-        lim = limit(e, n).v1_star
+    hard = []
+    for k, (m, v_max) in enumerate(zip(materials, tops)):
+        e, n, h = _triple(m)
+        try:  # curve() would say it too, but after the limit below: check et_ratio first
+            h = real_scalar(h, "et_ratio")
+            law = resolve_loading(None, h)
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"materials[{k}]: {exc}") from None
+        hard.append(h)
+        lim = limit(e, n, et_ratio=h, loading=law.name).v1_star
         if v_max is not None and v_max > lim:
-            raise ValueError(f"{option} = {v_max!r} is past material {k}'s (eps_y = {e!r}, nu = {n!r}) limit "
-                             f"w_m* = 425 at V1* = {lim:.10g}")
+            raise ValueError(f"{option} = {v_max!r} is past material {k}'s (eps_y = {e!r}, nu = {n!r}"
+                             + (f", et_ratio = {h!r}" if h > 0 else "") + f") limit w_m* = 425 at V1* = {lim:.10g}")
         # curve() validates eps_y and nu (ValueError naming them) and warns outside the validated range
-        first = curve(e, n, _unloading.NAMES[0], v_max=v_max)
-        out.append([first.data] + [build_curve_data(e, n, name, v_max=first.v_max) for name in _unloading.NAMES[1:]])
+        # (the header warns of unloading fitted without hardening once, below, not per material)
+        first = _curve(e, n, _unloading.NAMES[0], v_max, False, h, law.name, False)
+        out.append([first.data] + [build_curve_data(e, n, name, v_max=first.v_max, et_ratio=h, loading=law.name)
+                                   for name in _unloading.NAMES[1:]])
+    if any(x > 0.0 for x in hard):
+        unfitted = [m.short for m in _unloading.MODELS.values() if not m.fits_hardening]
+        warn(f"a material hardens (et_ratio > 0): the header's {' and '.join(unfitted)} unloading use models "
+             "fitted to elastic-perfectly plastic finite elements, an extrapolation", ValidityWarning)
     return out
 
 
@@ -132,8 +161,9 @@ def impact_materials(impacts: Sequence[Impact], V_max: float | Sequence[float] |
 
     Returns
     -------
-    (list of (eps_y, nu), list of (float or None), list of dict)
-        For :func:`write_header`: the normalised materials, their largest V1* (V_max / V_c) and
+    (list of (eps_y, nu) or (eps_y, nu, et_ratio), list of (float or None), list of dict)
+        For :func:`write_header`: the normalised materials (a triple with the impact's Et/E,
+        :attr:`fastrest.Impact.et_ratio`, where it hardens), their largest V1* (V_max / V_c) and
         each impact's :meth:`~fastrest.Impact.critical_values`.
 
     Raises
@@ -154,7 +184,7 @@ def impact_materials(impacts: Sequence[Impact], V_max: float | Sequence[float] |
         if not isinstance(imp, Impact):
             raise TypeError(f"impacts[{k}] must be a fastrest.Impact, got {type(imp).__name__}")
         crit = imp.critical_values()
-        lim = limit(imp.eps_y, imp.nu).v1_star
+        lim = limit(imp.eps_y, imp.nu, et_ratio=imp.et_ratio, loading=imp.loading).v1_star
         if top is not None:
             top = real_scalar(top, "V_max")
             if not (top > 0 and math.isfinite(top)):
@@ -164,7 +194,7 @@ def impact_materials(impacts: Sequence[Impact], V_max: float | Sequence[float] |
                 raise ValueError(f"V_max = {top!r} m/s is past {who}'s limit w_m* = 425 at "
                                  f"V = {lim * crit['V_c']:.10g} m/s (V_c = {crit['V_c']:.6g} m/s)")
             top = min(top / crit["V_c"], lim)
-        materials.append((imp.eps_y, imp.nu))
+        materials.append((imp.eps_y, imp.nu) + ((imp.et_ratio,) if imp.et_ratio > 0.0 else ()))
         v_max.append(top)
         critical.append(crit)
     return materials, v_max, critical
@@ -332,15 +362,18 @@ _PORTABLE = r"""/* C99, C++ or CUDA. Under CUDA (__CUDACC__: nvcc, NVRTC) the fu
 """
 
 
-def header_text(materials: Sequence[tuple[float, float]], curves: Sequence[Any], name: str = "fastrest_scene.h",
+def header_text(materials: Sequence[tuple[float, ...]], curves: Sequence[Any], name: str = "fastrest_scene.h",
                 command: str | None = None, critical: Sequence[dict[str, float]] | None = None,
                 names: Sequence[str] | None = None) -> str:
     """The header's text for ``materials`` and their :func:`scene_curves`.
 
     ``critical``: each material pair's :meth:`fastrest.Impact.critical_values` (a header built from
     physical properties; adds :data:`CRITICAL_KEYS` arrays and ``fastrest_v1_star``); ``names``:
-    each material's name, for the comments.
+    each material's name, for the comments. A material given as (eps_y, nu, et_ratio) with
+    et_ratio > 0 has its et_ratio and loading law in the opening comment.
     """
+    materials = [_triple(m) for m in materials]
+    laws = [resolve_loading(None, h) for _, _, h in materials]
     nm = len(_unloading.NAMES)
     shift = curves[0][0].shift
     # one row list per quantity: the Hertz rows (shared), then each material's JG rows
@@ -361,17 +394,23 @@ def header_text(materials: Sequence[tuple[float, float]], curves: Sequence[Any],
     if not guard[0].isalpha():
         guard = "FASTREST_" + guard
     prov = provenance()
+    # the loading law of hardening materials (none: the comment of a JG header is unchanged)
+    hardening = [" * " + line for law in {x.name: x for x in laws if x.hardening}.values()
+                 for line in textwrap.wrap(f"Materials with et_ratio = Et/E > 0 harden: loading law {law.name!r}, "
+                                           f"{law.label}, with E/Sy = (1 - nu^2)/eps_y; {law.reference}.", 94)]
     lines = [f"/* {name}: generated by fastrest {prov['fastrest_version']} "
              f"(`{command or 'fastrest export c'}`). Do not edit.",
              " *",
              " * Coefficient of restitution of an elastic-perfectly plastic sphere on a rigid flat,",
              " * Jackson, Green & Marghitu (2010), doi:10.1007/s11071-009-9591-z, tabulated per material as",
              " * fastrest.curve does (degree-5 cells, ~1e-13 relative against the direct solver).",
+             *hardening,
              " * Unloading models: " + "; ".join(f"{m.code} = {m.short}: {m.label}" for m in _unloading.MODELS.values()),
              " * Materials (k: eps_y = Sy/E', nu, largest V1* tabulated):"]
-    for k, ((e, n), c) in enumerate(zip(materials, curves)):
+    for k, ((e, n, h), c) in enumerate(zip(materials, curves)):
         label = f"{k} ({names[k]})" if names and names[k] else f"{k}"
-        lines.append(f" *   {label}: eps_y = {e!r}, nu = {n!r}, v_max = {c[0].v_max!r}"
+        hard = f", et_ratio = {h!r} (loading: {laws[k].name})" if h > 0.0 else ""
+        lines.append(f" *   {label}: eps_y = {e!r}, nu = {n!r}{hard}, v_max = {c[0].v_max!r}"
                      + (f" (V up to {c[0].v_max * critical[k]['V_c']:.6g} m/s, V_c = {critical[k]['V_c']:.6g} m/s)"
                         if critical else ""))
     lines += [" * Evaluate with fastrest_e(k, v1_star, unloading), fastrest_omega_m(k, v1_star),",
@@ -395,8 +434,8 @@ def header_text(materials: Sequence[tuple[float, float]], curves: Sequence[Any],
               _table("FASTREST_INT64", "fastrest_base", "[FASTREST_N_MATERIALS]",
                      ", ".join(f"FASTREST_INT64_C({b})" for b in base)),
               "/* eps_y = Sy/E' (JGM eq 11) and nu of each material */",
-              _table("double", "fastrest_eps_y", "[FASTREST_N_MATERIALS]", ", ".join(_lit(e) for e, _ in materials)),
-              _table("double", "fastrest_nu", "[FASTREST_N_MATERIALS]", ", ".join(_lit(n) for _, n in materials)),
+              _table("double", "fastrest_eps_y", "[FASTREST_N_MATERIALS]", ", ".join(_lit(m[0]) for m in materials)),
+              _table("double", "fastrest_nu", "[FASTREST_N_MATERIALS]", ", ".join(_lit(m[1]) for m in materials)),
               f"#define FASTREST_HAS_CRITICAL {1 if critical else 0}"]
     if critical:
         lines.append("/* critical values of each pair (JGM eqs 4-7, 23, 28; fastrest.Impact.critical_values) */")
@@ -421,7 +460,7 @@ def header_text(materials: Sequence[tuple[float, float]], curves: Sequence[Any],
     return "\n".join(lines) + "\n"
 
 
-def write_header(path: str | os.PathLike[str], materials: Sequence[tuple[float, float]], v_max: float | None = None,
+def write_header(path: str | os.PathLike[str], materials: Sequence[tuple[float, ...]], v_max: float | None = None,
                  command: str | None = None, *, critical: Sequence[dict[str, float]] | None = None,
                  names: Sequence[str] | None = None) -> tuple[str | os.PathLike[str], list[Any]]:
     """Build the curves and write the header atomically; returns (path, curves).

@@ -18,7 +18,7 @@ from ..unloading import MODELS
 __all__ = ["add_parser", "cli_names"]
 
 _PAIR_OPTIONS = {k: "--" + k.replace("_", "-") for k in
-                 ("E", "nu", "Sy", "R", "rho", "mass", "flat_E", "flat_nu", "flat_Sy")}
+                 ("E", "nu", "Sy", "R", "rho", "mass", "Et", "flat_E", "flat_nu", "flat_Sy", "flat_Et")}
 
 
 @contextlib.contextmanager
@@ -84,7 +84,9 @@ def _cmd_c(args):
     print(f"wrote {path} ({len(materials)} materials, {len(curves[0])} unloading models) "
           f"in {time.perf_counter() - t0:.1f} s")
     for k, c in enumerate(curves):
-        line = f"  material {k}: eps_y = {materials[k][0]:g}, nu = {materials[k][1]:g}, V1* up to {c[0].v_max:.6g}"
+        hard = f", et_ratio = {materials[k][2]:g}" if len(materials[k]) == 3 and materials[k][2] > 0 else ""
+        line = (f"  material {k}: eps_y = {materials[k][0]:g}, nu = {materials[k][1]:g}{hard}, "
+                f"V1* up to {c[0].v_max:.6g}")
         if critical:
             line += f" (V up to {c[0].v_max * critical[k]['V_c']:.6g} m/s, V_c = {critical[k]['V_c']:.6g} m/s)"
         print(line)
@@ -184,7 +186,11 @@ def _add_pair_options(parser):
     parser.add_argument("--flat-E", dest="flat_E", type=float, help="flat's Young's modulus (Pa); default rigid")
     parser.add_argument("--flat-nu", dest="flat_nu", type=float, help="flat's Poisson's ratio (-)")
     parser.add_argument("--flat-Sy", dest="flat_Sy", type=float, help="flat's yield strength (Pa); default never yields")
-    parser.add_argument("--pairs", help="CSV file of pairs: header name,E,nu,Sy,R,rho[,mass,flat_E,flat_nu,flat_Sy,V_max]")
+    parser.add_argument("--Et", type=float, help="sphere's tangent modulus of strain hardening (Pa); default 0: "
+                                                 "elastic-perfectly plastic")
+    parser.add_argument("--flat-Et", dest="flat_Et", type=float, help="flat's tangent modulus (Pa); default 0")
+    parser.add_argument("--pairs", help="CSV file of pairs: header name,E,nu,Sy,R,rho"
+                                        "[,mass,Et,flat_E,flat_nu,flat_Sy,flat_Et,V_max]")
     parser.add_argument("--pair", action="append", metavar="NAME", help="only this pair of --pairs (repeatable)")
 
 
@@ -230,8 +236,9 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argp
                                    "then also holds each pair's critical values (fastrest_V_c[k], "
                                    "fastrest_omega_c[k], fastrest_P_c[k], ...) and fastrest_v1_star(k, V), "
                                    "V (m/s) -> V1*.")
-    pc.add_argument("--materials", nargs="+", metavar="EPS_Y:NU",
-                    help="normalised materials k = 0, 1, ...: eps_y = Sy/E' and nu")
+    pc.add_argument("--materials", nargs="+", metavar="EPS_Y:NU[:ET_RATIO]",
+                    help="normalised materials k = 0, 1, ...: eps_y = Sy/E', nu and optionally Et/E "
+                         "(strain hardening) [default Et/E: 0]")
     _add_pair_options(pc)
     pc.add_argument("--V-max", dest="V_max", type=float,
                     help="largest impact speed (m/s) of a pair given by its properties (a --pairs file's "

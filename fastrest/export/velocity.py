@@ -6,6 +6,12 @@ to ``V_max``, e of every unloading model, 1 - e^2, w_m (m) and w_m* (exact solve
 is within ``tol`` of the exact e and 1 - e^2 (absolute) and of w_m* (relative); the placement uses
 the fast curves (:mod:`fastrest.curve`) and the result is then measured against the direct solver
 at 15 points inside every interval.
+
+Strain hardening: a pair's ``Et`` (and ``flat_Et``; tangent moduli in Pa, default 0) gives the
+impact's Et/E (:attr:`fastrest.Impact.et_ratio`, of the body that yields first) and its loading
+law (:attr:`fastrest.Impact.loading`), which every row and check then uses; the header records
+both. JCG and Etsion unloading were fitted without hardening: their columns are then an
+extrapolation (a ValidityWarning once per pair, and a note in the header).
 """
 from __future__ import annotations
 
@@ -20,10 +26,11 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .._validation import real_scalar
+from .._validation import ValidityWarning, real_scalar, warn
 from ..curve_data import build_curve_data, curve_array
 from ..direct import impact_array
 from ..limits import speed_limit
+from ..loading import get as loading_law
 from ..impact import Impact
 from ..materials import Material
 from ..tables.file import check_path, read_bounded
@@ -42,11 +49,12 @@ MAX_ROWS = 200000
 MAX_PAIRS = 1000
 MAX_PAIRS_BYTES = 1 << 20
 CHECKS_PER_INTERVAL = 15
-PAIR_KEYS = ("name", "E", "nu", "Sy", "R", "rho", "mass", "flat_E", "flat_nu", "flat_Sy", "V_max")
+PAIR_KEYS = ("name", "E", "nu", "Sy", "R", "rho", "mass", "Et", "flat_E", "flat_nu", "flat_Sy", "flat_Et", "V_max")
 
 
 class Pair(dict[str, Any]):
-    """One material pair's inputs (SI units) as given: name, E, nu, Sy, R, rho/mass, flat_*, V_max."""
+    """One material pair's inputs (SI units) as given: name, E, nu, Sy, R, rho/mass, Et (tangent
+    modulus, Pa; None or 0: no hardening), flat_*, V_max."""
 
 
 def pair_from_options(**kw: Any) -> Pair:
@@ -115,22 +123,25 @@ def impact_of(pair, where=""):
                 raise ValueError(f"{k} is required")
         if pair.get("rho") is None and pair.get("mass") is None:
             raise ValueError("give rho (sphere density, kg/m^3) or mass (kg)")
-        sphere = Material(pair["E"], pair["nu"], pair["Sy"], rho=pair.get("rho"))
+        sphere = Material(pair["E"], pair["nu"], pair["Sy"], rho=pair.get("rho"),
+                          Et=pair["Et"] if pair.get("Et") is not None else 0.0)
         flat = None
         if pair.get("flat_E") is not None:
             if pair.get("flat_nu") is None:
                 raise ValueError("flat_E needs flat_nu")
             flat = Material(pair["flat_E"], pair["flat_nu"],
-                            pair["flat_Sy"] if pair.get("flat_Sy") is not None else math.inf)
-        elif pair.get("flat_nu") is not None or pair.get("flat_Sy") is not None:
-            raise ValueError("flat_nu and flat_Sy need flat_E (without it the flat is rigid)")
+                            pair["flat_Sy"] if pair.get("flat_Sy") is not None else math.inf,
+                            Et=pair["flat_Et"] if pair.get("flat_Et") is not None else 0.0)
+        elif any(pair.get(k) is not None for k in ("flat_nu", "flat_Sy", "flat_Et")):
+            raise ValueError("flat_nu or flat_Sy or flat_Et needs flat_E (without it the flat is rigid)")
         return Impact(sphere, pair["R"], flat=flat, mass=pair.get("mass"))
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{where}{exc}") from None
 
 
-def _curves(eps_y, nu, v_max):
-    return [build_curve_data(eps_y, nu, name, v_max=v_max) for name in _unloading.NAMES]
+def _curves(eps_y, nu, v_max, et_ratio=0.0, loading=None):
+    return [build_curve_data(eps_y, nu, name, v_max=v_max, et_ratio=et_ratio, loading=loading)
+            for name in _unloading.NAMES]
 
 
 def _values(curves, v):
@@ -144,13 +155,14 @@ def _values(curves, v):
     return out
 
 
-def _direct(v, eps_y, nu):
+def _direct(v, eps_y, nu, et_ratio=0.0, law=0):
+    """Like :func:`_values` from the direct solver; ``law`` is the loading law's code."""
     n = len(_unloading.NAMES)
     out = np.empty((1 + 2 * n, v.size))
     sol = np.empty((5, v.size))
-    e, nn = np.full(v.size, eps_y), np.full(v.size, nu)
+    e, nn, h = np.full(v.size, eps_y), np.full(v.size, nu), np.full(v.size, float(et_ratio))
     for m in range(n):
-        impact_array(np.ascontiguousarray(v), e, nn, m, False, sol)
+        impact_array(np.ascontiguousarray(v), e, nn, h, m, False, law, sol)
         out[0], out[1 + m], out[1 + n + m] = sol[0], sol[1], sol[2]
     return out
 
@@ -168,25 +180,37 @@ def velocity_table(impact: Impact, V_max: float | None, tol: float) -> dict[str,
 
     Returns a dict: ``columns`` (name -> array), ``critical`` (critical values), ``measured``
     (worst error of linear interpolation against the direct solver per quantity, at
-    :data:`CHECKS_PER_INTERVAL` points inside every interval), ``v1_star_max``.
+    :data:`CHECKS_PER_INTERVAL` points inside every interval), ``v1_star_max``, ``et_ratio`` and
+    ``loading`` (the impact's Et/E and loading law).
+
+    Warns a ValidityWarning once where the impact hardens (``et_ratio > 0``): the JCG and Etsion
+    columns are then an extrapolation of models fitted without hardening.
     """
     if not isinstance(impact, Impact):
         raise TypeError(f"impact must be a fastrest.Impact, got {impact!r} ({type(impact).__name__})")
     tol = _check_tol(tol)
     V_max = real_scalar(V_max, "V_max")
     Vc = impact.V_c
-    lim = speed_limit(impact.eps_y, impact.nu) * Vc
+    h, law = impact.et_ratio, loading_law(impact.loading)
+    v_lim = speed_limit(impact.eps_y, impact.nu, et_ratio=h, loading=law)
+    lim = v_lim * Vc
     if not (V_max > 0 and V_max <= lim * (1 + 1e-12)):
         raise ValueError(f"V_max = {V_max!r} m/s is outside (0, {lim:.6g}] m/s: the model ends at "
                          f"w_m* = 425 for this pair (V_c = {Vc:.6g} m/s)")
-    v_top = min(V_max / Vc, speed_limit(impact.eps_y, impact.nu))
-    curves = _curves(impact.eps_y, impact.nu, v_top)
+    if h > 0.0:
+        unfitted = [m.short for m in _unloading.MODELS.values() if not m.fits_hardening]
+        warn(f"the pair hardens (Et/E = {h:.6g}): the {' and '.join(unfitted)} columns unload with models "
+             f"fitted to elastic-perfectly plastic finite elements, an extrapolation ("
+             f"{', '.join(m.short for m in _unloading.MODELS.values() if m.fits_hardening)} is the pairing "
+             "of the hardening law's peers)", ValidityWarning)
+    v_top = min(V_max / Vc, v_lim)
+    curves = _curves(impact.eps_y, impact.nu, v_top, h, law)
     knots = [0.0, v_top] + [x for x in (1.0,) + JUMP if x < v_top]
     v = place_rows(lambda x: _values(curves, x), knots, tol, MAX_ROWS)
-    vals = _direct(v, impact.eps_y, impact.nu)
+    vals = _direct(v, impact.eps_y, impact.nu, h, law.code)
     # measure: linear interpolation of the exact row values against the exact solver in between
     t = _interior(v[:-1], v[1:], CHECKS_PER_INTERVAL)
-    ref = _direct(t.ravel(), impact.eps_y, impact.nu).reshape(-1, *t.shape)
+    ref = _direct(t.ravel(), impact.eps_y, impact.nu, h, law.code).reshape(-1, *t.shape)
     w = (t - v[:-1, None]) / np.diff(v)[:, None]
     lin = vals[:, :-1, None] * (1 - w) + vals[:, 1:, None] * w
     err = _scaled_error(lin, ref)
@@ -203,7 +227,7 @@ def velocity_table(impact: Impact, V_max: float | None, tol: float) -> dict[str,
     cols["omega_m_m"] = vals[0] * impact.omega_c
     cols["omega_m_star"] = vals[0]
     return dict(columns=cols, critical=impact.critical_values(), measured=measured, tol=tol,
-                V_max=V_max, v1_star_max=v_top)
+                V_max=V_max, v1_star_max=v_top, et_ratio=h, loading=law.name)
 
 
 COLUMN_DOC = {
@@ -216,9 +240,17 @@ COLUMN_DOC = {
 
 def _header(pair, res):
     prov = provenance()
+    law = loading_law(res["loading"])
+    loading = {"law": law.name, "et_ratio": res["et_ratio"], "reference": law.reference}
+    if res["et_ratio"] > 0.0:
+        loading["note"] = ("et_ratio = Et/E of the body that yields first; the law takes E/Sy = (1 - nu^2)/eps_y "
+                           "(JGM's equivalent sphere). " + ", ".join(
+                               m.short for m in _unloading.MODELS.values() if not m.fits_hardening)
+                           + " unloading were fitted without hardening: their columns are an extrapolation")
     return {"fastrest_version": prov["fastrest_version"], "references": prov["references"],
             "source": "fastrest.direct (exact solver); rows placed with fastrest.curve",
             "pair": {k: v for k, v in pair.items() if v is not None}, "critical": res["critical"],
+            "loading": loading,
             "V_max_m_s": res["V_max"], "tolerance": res["tol"],
             "tolerance_meaning": "linear interpolation in V between rows: absolute error of e and 1 - e^2, "
                                  "relative error of w_m",

@@ -34,10 +34,11 @@ from .._validation import check_count
 from ..tables.file import check_target, check_target_dir, replace_files
 from ._common import EPS_Y_SERIES, TABLE1_EPS_Y, TABLE1_NU
 from .comparisons import figure5, figure6
+from .hardening import figure_hardening
 from .jgm import figure2, figure3, figure4
 from .kharaz import ALUMINA, ALUMINA_DENSITY, ALUMINIUM_FLAT, KHARAZ_RADIUS, STEEL_FLAT, figure7, figure8, kharaz_impact
 
-__all__ = ["figure2", "figure3", "figure4", "figure5", "figure6", "figure7", "figure8", "kharaz_impact",
+__all__ = ["figure2", "figure3", "figure4", "figure5", "figure6", "figure7", "figure8", "figure_hardening", "kharaz_impact",
            "FIGURES", "MAX_DPI", "write_all", "ALUMINA_DENSITY", "ALUMINA", "ALUMINIUM_FLAT", "STEEL_FLAT", "KHARAZ_RADIUS",
            "TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES"]
 
@@ -50,6 +51,7 @@ FIGURES: dict[str, Callable[..., tuple[Figure, Axes]]] = {
     "fig6_unloading_models": figure6,
     "fig7_alumina_on_aluminium": figure7,
     "fig8_alumina_on_steel": figure8,
+    "hardening_e": figure_hardening,  # not in JGM: Ghaednia et al. (2019), docs/model.md section 12
 }
 #: Largest resolution of :func:`write_all`: a 6.4 x 4.8 in figure is then 7680 x 5760 pixels.
 MAX_DPI = 1200
@@ -86,7 +88,8 @@ def write_all(out_dir: str | os.PathLike[str], *, dpi: int = 150) -> list[Path]:
 
     Notes
     -----
-    JGM Figs 2-8 (Fig 1 is a sketch); ``fastrest figures --out DIR`` calls this. Every argument
+    JGM Figs 2-8 (Fig 1 is a sketch), and e with strain hardening (not in JGM); ``fastrest figures
+    --out DIR`` calls this. Every argument
     and target is checked, and every figure drawn in memory, before anything is created; the
     files are then written atomically (:func:`fastrest.tables.file.replace_files`).
 
