@@ -48,12 +48,15 @@ def _cmd_e(args):
         raise ValueError("give --rho (sphere density, kg/m^3) or --mass (kg of the moving body)")
     if args.flat_E is None and (args.flat_nu is not None or args.flat_Sy is not None):
         raise ValueError("--flat-nu and --flat-Sy need --flat-E (without it the flat is rigid)")
-    sphere = Material(args.E, args.nu, args.Sy, rho=args.rho)
+    if args.flat_E is None and args.flat_Et is not None:
+        raise ValueError("--flat-Et needs --flat-E (without it the flat is rigid)")
+    sphere = Material(args.E, args.nu, args.Sy, rho=args.rho, Et=args.Et)
     flat = None
     if args.flat_E is not None:
         if args.flat_nu is None:
             raise ValueError("--flat-E needs --flat-nu (the flat's Poisson's ratio)")
-        flat = Material(args.flat_E, args.flat_nu, args.flat_Sy if args.flat_Sy is not None else math.inf)
+        flat = Material(args.flat_E, args.flat_nu, args.flat_Sy if args.flat_Sy is not None else math.inf,
+                        Et=args.flat_Et if args.flat_Et is not None else 0.0)
     imp = Impact(sphere, args.R, flat=flat, mass=args.mass)
     crit = imp.critical_values()
     V = np.asarray(args.V, dtype=float)
@@ -65,7 +68,8 @@ def _cmd_e(args):
     with warnings.catch_warnings(record=True) as caught:
         # record the model's own warnings (validity, extrapolation) for the output; others pass through
         warnings.simplefilter("always", ValidityWarning)
-        sols = {m: direct.solve(v1, imp.eps_y, imp.nu, m, extrapolate=args.extrapolate) for m in NAMES}
+        sols = {m: direct.solve(v1, imp.eps_y, imp.nu, m, extrapolate=args.extrapolate, et_ratio=imp.et_ratio,
+                                loading=imp.loading) for m in NAMES}
         others, model_notes = {}, []
         for n in names:
             # one value per speed: a comparison model undefined at a speed (Weir-Tallon at V = 0)
@@ -95,6 +99,8 @@ def _cmd_e(args):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     if args.json:
         out = {"critical": crit, "impacts": rows, "warnings": notes}
+        if imp.et_ratio > 0.0:
+            out["loading"] = {"law": imp.loading, "et_ratio": imp.et_ratio}
         if names:
             out["models"] = names
         json.dump(out, sys.stdout, indent=2, allow_nan=False)  # strict JSON: no NaN/Infinity
@@ -106,6 +112,8 @@ def _cmd_e(args):
         kind = "an elastic flat (never yields)" if math.isinf(flat.Sy) else "an elastic-plastic flat"
         who = "sphere" if imp.yielding is sphere else "flat"
         print(f"Jackson, Green & Marghitu (2010): sphere on {kind}; the {who} yields first (smaller C(nu) Sy)")
+    if imp.et_ratio > 0.0:
+        print(f"  strain hardening: Ghaednia et al. (2019) loading, Et/E = {imp.et_ratio:.6g} (docs/model.md section 12)")
     units = {"E_eff": "Pa", "R_eff": "m", "mass": "kg", "nu": "-", "Sy": "Pa", "C": "-", "eps_y": "-",
              "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": "J", "V_c": "m/s"}
     for k, val in crit.items():
@@ -354,6 +362,10 @@ def main(argv: list[str] | None = None) -> int:
     pe.add_argument("--flat-E", type=float, help="flat's Young's modulus (Pa); without it the flat is rigid")
     pe.add_argument("--flat-nu", type=float, help="flat's Poisson's ratio (-); required with --flat-E")
     pe.add_argument("--flat-Sy", type=float, help="flat's yield strength (Pa); without it the flat never yields")
+    pe.add_argument("--Et", type=float, default=0.0,
+                    help="sphere tangent modulus (Pa; default 0, elastic-perfectly plastic): strain hardening, "
+                         "Ghaednia et al. 2019 (write a negative value as --Et=-1)")
+    pe.add_argument("--flat-Et", type=float, help="flat's tangent modulus (Pa; default 0)")
     pe.add_argument("--V", type=float, nargs="+", required=True, help="impact speeds (m/s)")
     pe.add_argument("--extrapolate", action="store_true", help="allow w_m* > 425 (up to a/R = 1)")
     pe.add_argument("--json", action="store_true", help="machine-readable output")

@@ -184,3 +184,16 @@ def test_kernels_return_nan_for_an_invalid_law_or_hardening():
     for law, h in ((0, 0.1), (1, -0.1), (1, 1.0), (1, math.nan), (2, 0.0), (-1, 0.0)):
         assert all(math.isnan(x) for x in _kernels(law, h)), (law, h)
     assert all(math.isfinite(x) for x in _kernels(1, 0.5))
+
+
+def test_cli_e_takes_a_tangent_modulus(capsys):
+    from fastrest import cli
+    args = ["e", "--E", "200e9", "--nu", "0.33", "--Sy", "1.12e9", "--R", "0.01", "--rho", "7800", "--V", "1", "--json"]
+    assert cli.main(args + ["--Et", "2e9"]) == 0
+    import json
+    out = json.loads(capsys.readouterr().out)
+    imp = fastrest.Impact(fastrest.Material(200e9, 0.33, 1.12e9, 7800, Et=2e9), 0.01)
+    assert out["loading"] == {"law": "ghaednia", "et_ratio": 0.01}
+    assert out["impacts"][0]["e_brake"] == pytest.approx(float(imp.e(1.0, "brake")), rel=1e-15)
+    assert cli.main(args + ["--Et=-1"]) == 1
+    assert "Et (tangent modulus, Pa) must be" in capsys.readouterr().err
