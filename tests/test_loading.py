@@ -195,5 +195,5 @@ def test_cli_e_takes_a_tangent_modulus(capsys):
     imp = fastrest.Impact(fastrest.Material(200e9, 0.33, 1.12e9, 7800, Et=2e9), 0.01)
     assert out["loading"] == {"law": "ghaednia", "et_ratio": 0.01}
     assert out["impacts"][0]["e_brake"] == pytest.approx(float(imp.e(1.0, "brake")), rel=1e-15)
-    assert cli.main(args + ["--Et=-1"]) == 1
+    assert cli.main(args + ["--Et=-1"]) == 2  # a usage error, as the other options
     assert "Et (tangent modulus, Pa) must be" in capsys.readouterr().err
