@@ -2,7 +2,8 @@
 
 * :func:`reference_impact`: brute force on explicit summits, no forward tables and no rough
   kernels: every summit's loading energy is :func:`fastrest.energy.f_star_kernel` (quadrature),
-  its force :func:`fastrest.contact.p_star_kernel` and its unloading
+  its force :func:`fastrest.loading.p_star` (the loading law's, JG or Ghaednia et al. with
+  ``et_ratio``) and its unloading
   :func:`fastrest.unloading.restitution_kernel` (the single-sphere solver's own expressions, at
   V1* = sqrt(F)); the approach solving sum F = (V1/V_c)^2 comes from :func:`scipy.optimize.brentq`.
   Milliseconds per summit: for N up to a few hundred. Like the single-sphere kernels it forms
@@ -16,7 +17,7 @@ import mpmath
 import numpy as np
 
 import fastrest
-from fastrest.contact import p_star_kernel
+from fastrest import loading as _loading
 from fastrest.energy import f_star_kernel
 from fastrest.unloading import restitution_kernel, unloading_code
 
@@ -26,13 +27,15 @@ _ctx = mpmath.MPContext()
 _ctx.dps = 40
 
 
-def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
+def reference_impact(material, R_a, heights, V1, M, unloading="jcg", et_ratio=0.0, loading=None):
     """Brute-force impact of a flat of mass M (kg) at V1 (m/s) on summits of radius R_a (m) at
-    ``heights`` (m). Returns a dict with the scalar fields of :class:`fastrest.rough.RoughImpact`
+    ``heights`` (m), with the loading law of (loading, et_ratio) (:func:`fastrest.loading.resolve`).
+    Returns a dict with the scalar fields of :class:`fastrest.rough.RoughImpact`
     (e, loss, d_min, force_max, n_contact, n_yielded, dissipated, w_star_max)."""
     from scipy.optimize import brentq
 
     model = unloading_code(unloading)
+    law, h_r = _loading.resolve(loading, et_ratio).code, float(et_ratio)
     ip = fastrest.Impact(material, R_a, mass=M)
     eps, nu, wc = float(ip.eps_y), float(ip.nu), ip.omega_c
     z = np.asarray(heights, dtype=np.float64).ravel()
@@ -42,7 +45,7 @@ def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
     w_end = float(fastrest.omega_star_limit(eps, nu))
 
     def excess(x):
-        return sum(f_star_kernel(hi + x, eps, nu) for hi in h if hi + x > 0.0) - energy
+        return sum(f_star_kernel(hi + x, eps, nu, law, h_r) for hi in h if hi + x > 0.0) - energy
 
     # bracket the approach by doubling from the Hertz single-summit value (an upper bound while
     # the tallest summit stays elastic)
@@ -58,10 +61,10 @@ def reference_impact(material, R_a, heights, V1, M, unloading="jcg"):
         w = hi + x
         if w <= 0.0:
             continue
-        f = f_star_kernel(w, eps, nu)
-        _, loss, _, _ = restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, model)
+        f = f_star_kernel(w, eps, nu, law, h_r)
+        _, loss, _, _ = restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, model, law, h_r)
         f_sum += f
-        p_sum += p_star_kernel(w, eps, nu)
+        p_sum += _loading.p_star(law, w, eps, nu, h_r)
         l_sum += loss * f
         n_c += 1
         n_y += w > 1.0

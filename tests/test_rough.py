@@ -70,7 +70,7 @@ def test_forward_F_matches_f_star_kernel(eps_y, nu):
     w = np.concatenate([np.geomspace(1e-6, w_max, 3000), rng.uniform(1.9, w_max, 3000),
                         [0.0, 1.0, 1.9, np.nextafter(1.9, 2.0), w_max]])
     out = forward_array(data, w)
-    ref = np.array([energy.f_star_kernel(x, eps_y, nu) for x in w])
+    ref = np.array([energy.f_star_kernel(x, eps_y, nu, 0, 0.0) for x in w])
     nz = ref > 0
     err = np.max(np.abs(out[0][nz] / ref[nz] - 1.0))
     assert err <= 1e-12, err
@@ -98,7 +98,7 @@ def test_forward_returned_energy_is_single_sphere_restitution(eps_y, nu, model):
     data = fw.forward_data(eps_y, nu, w_max=300.0, unloading=model)
     w = np.concatenate([[0.5, 1.0, 1.0 + 1e-9, 1.5, 1.9, 1.95], np.geomspace(2.0, 300.0, 40)])
     out = forward_array(data, w)
-    v1_star = np.sqrt([energy.f_star_kernel(x, eps_y, nu) for x in w])
+    v1_star = np.sqrt([energy.f_star_kernel(x, eps_y, nu, 0, 0.0) for x in w])
     e = direct.e_exact(v1_star, eps_y, nu, unloading=model)
     loss = direct.loss_exact(v1_star, eps_y, nu, unloading=model)
     F = out[0]
@@ -347,13 +347,13 @@ def gw_quad_reference(s, V1, M, model="jcg"):
     phi = lambda x: math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
 
     def F(w):
-        return energy.f_star_kernel(w, eps, nu) if w > 0 else 0.0
+        return energy.f_star_kernel(w, eps, nu, 0, 0.0) if w > 0 else 0.0
 
     def L(w):
         if w <= 1.0:
             return 0.0
-        f = energy.f_star_kernel(w, eps, nu)
-        return unloading.restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, code)[1] * f
+        f = energy.f_star_kernel(w, eps, nu, 0, 0.0)
+        return unloading.restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, code, 0, 0.0)[1] * f
 
     def expect(sd, fun):
         top = max(sd, 0.0) + 12.0

@@ -2,7 +2,8 @@
 
 A rigid flat of mass M moves at V1 towards a rough surface covered with spherical asperities
 (summits) of radius R_a, made of the surface's material. Every summit follows the JGM single-
-sphere law on loading and unloads elastically; summits do not interact and the bulk under them
+sphere law on loading (Jackson-Green; with strain hardening, ``et_ratio`` = Et/E > 0, Ghaednia et
+al. 2019) and unloads elastically; summits do not interact and the bulk under them
 does not deform. With U_c, P_c, omega_c of one summit (:class:`fastrest.Impact` with radius R_a,
 rigid flat; JGM eqs 4, 6, 24):
 

@@ -23,7 +23,7 @@ import numpy as np
 from .. import forward as fw
 from .._jit import jit
 from .._validation import as_float_array, kernel_array
-from ..contact import W_SWITCH
+from .._validation import OMEGA_STAR_SWITCH as W_SWITCH  # every loading law's Hertz switch (fastrest.loading)
 
 __all__ = ["OK", "NEEDS_TABLE", "FAILED", "MAX_ITER", "ONSET_BAND", "hertz_fp", "hertz_terms", "jg_terms",
            "summit_values", "energy_excess", "energy_parts"]
@@ -103,7 +103,8 @@ def hertz_terms(w, d, onset):
 
 @jit(inline=True)
 def jg_terms(data, w, d, onset):
-    """:func:`hertz_terms` under the JG law.
+    """:func:`hertz_terms` under the forward table's loading law (JG, or Ghaednia et al. with
+    strain hardening).
 
     Parameters
     ----------
@@ -115,7 +116,8 @@ def jg_terms(data, w, d, onset):
     Returns
     -------
     (float, float, float)
-        As :func:`hertz_terms`; above w* = 1.9, F (JGM eqs 19, 25) and the Newton slope P* (eq 9)
+        As :func:`hertz_terms`; above w* = 1.9, F (JGM eqs 19, 25) and the Newton slope P* (eq 9,
+        or the hardening law's)
         from the table (F - 1 >= 1.9^2.5 - 1 loses nothing there). NaN past ``data.w_max``.
 
     Examples

@@ -21,7 +21,7 @@ import numpy as np
 
 from .. import forward as fw
 from .._jit import jit
-from ..contact import W_SWITCH
+from .._validation import OMEGA_STAR_SWITCH as W_SWITCH  # every loading law's Hertz switch (fastrest.loading)
 from ..interpolation import cell_polynomial
 from .common import hertz_fp, summit_values
 
@@ -193,7 +193,7 @@ def _hertz_term(law, w, yielded):
 
 @jit(inline=True)
 def _jg_term(law, w, yielded):
-    """(F, P*, 0, 0) under the JG law: F and the slope P* from the forward table ``law``."""
+    """(F, P*, 0, 0) under the table's loading law: F and the slope P* from the forward table ``law``."""
     f, pf = fw.FP_table_forward(law, w)
     return f, pf, 0.0, 0.0
 
@@ -241,12 +241,12 @@ def gw_hertz_sums_kernel(g, zs_d):
 
 @jit
 def gw_jg_sums_kernel(data, g, zs_d, w_cap):
-    """Per-summit expected loading energy and force under the JG law.
+    """Per-summit expected loading energy and force under the loading law of ``data``.
 
     Parameters
     ----------
     data : fastrest.forward.ForwardData
-        Forward table of one summit.
+        Forward table of one summit (its loading law: JG, or Ghaednia et al. with hardening).
     g : GWData
         The surface's height statistics.
     zs_d : float

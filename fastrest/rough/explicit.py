@@ -89,7 +89,7 @@ def _hertz_row(law, w, d, onset):
 
 @jit(inline=True)
 def _jg_row(law, w, d, onset):
-    """:func:`_hertz_row` under the JG law, ``law`` the forward table."""
+    """:func:`_hertz_row` under the loading law of ``law``, the forward table."""
     f, p, k = jg_terms(law, w, d, onset)
     return f, abs(f), p, k
 
@@ -110,7 +110,7 @@ def _hertz_sums(h, x, delta):
 
 @jit(parallel=True)
 def _jg_sums(data, h, x, delta):
-    """:func:`_hertz_sums` under the JG law (F and the slope P* from the forward table)."""
+    """:func:`_hertz_sums` under the table's loading law (F and the slope P* from the forward table)."""
     return _block_sums(_jg_row, data, h, x, delta)
 
 
@@ -204,7 +204,7 @@ def _hertz_law_sums(law, h, x, delta):
 def _hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
     """(status, x, delta) of the impact of energy e_hi + e_lo (over U_c) with every summit Hertzian.
 
-    The estimate (no table) that starts every JG solve and sizes its forward table. ``h``: summit
+    The estimate (no table) that starts every solve under the loading law and sizes its forward table. ``h``: summit
     heights below the tallest over omega_c (<= 0); (x0, d0): start, w* of the tallest and w* - 1.
     """
     return _approach(_hertz_law_sums, None, h, e_hi, e_lo, x0, d0, np.inf, np.inf)
@@ -212,7 +212,8 @@ def _hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
 
 @jit
 def _jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
-    """(status, x, delta) of the deepest approach under the JG law (JGM eq 29 summed over summits).
+    """(status, x, delta) of the deepest approach under the table's loading law (JGM eq 29 summed
+    over summits).
 
     Trial points beyond the table (data.w_max) return NEEDS_TABLE with x the w* asked for. Once
     the table reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and
@@ -272,7 +273,7 @@ def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDAr
 
     Notes
     -----
-    Solves sum_i (h_i + x)^2.5 = E (JGM eq 29 with eq 19 per summit); the start of every JG solve
+    Solves sum_i (h_i + x)^2.5 = E (JGM eq 29 with eq 19 per summit); the start of every solve under the loading law
     and the size of its table.
 
     Examples
@@ -291,12 +292,13 @@ def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDAr
 
 
 def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64], x0: NDArray[np.float64], d0: NDArray[np.float64], w_model: float) -> NDArray[np.float64]:
-    """Impacts on explicit summits under the JG law, with the forward table ``data``.
+    """Impacts on explicit summits under the loading law of the forward table ``data``.
 
     Parameters
     ----------
     data : fastrest.forward.ForwardData
-        Forward table of one summit (loading energy, force, unloading).
+        Forward table of one summit (loading energy, force, unloading; its loading law, JG or
+        Ghaednia et al. with hardening, is every summit's).
     h : ndarray
         Summit heights below the tallest over omega_c (-), <= 0.
     e_hi, e_lo : ndarray

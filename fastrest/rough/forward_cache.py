@@ -10,8 +10,9 @@ import warnings
 import numpy as np
 
 from .. import forward as fw
-from .._validation import ValidityWarning
+from .._validation import ValidityWarning, real_scalar
 from ..limits import interference_limit, interference_limit_message
+from ..loading import resolve as resolve_loading
 from ..unloading import unloading_code
 from .common import NEEDS_TABLE, OK
 
@@ -19,8 +20,8 @@ __all__ = ["ForwardCache"]
 
 
 class ForwardCache:
-    """The :class:`fastrest.forward.ForwardData` of one material, one per unloading model, grown on
-    demand.
+    """The :class:`fastrest.forward.ForwardData` of one material and loading law, one per unloading
+    model, grown on demand.
 
     Parameters
     ----------
@@ -28,6 +29,19 @@ class ForwardCache:
         Sy/E' of the summits (-).
     nu : float
         Poisson's ratio of the summits (-).
+    et_ratio : float, optional
+        Tangent modulus over Young's modulus Et/E of the summits (-), 0 <= et_ratio < 1; default 0.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The summits' loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``
+        (Jackson-Green at 0, Ghaednia et al. 2019 above).
+
+    Raises
+    ------
+    TypeError
+        ``et_ratio`` is not a real number.
+    ValueError
+        ``et_ratio`` outside [0, 1), an unknown ``loading``, or et_ratio > 0 with a law without
+        hardening.
 
     Notes
     -----
@@ -41,11 +55,26 @@ class ForwardCache:
     >>> cache = ForwardCache(0.005, 0.3)
     >>> cache.get("jcg", w_max=30.0).w_max >= 30.0
     True
+    >>> ForwardCache(0.005, 0.3, et_ratio=0.01).get("brake", w_max=30.0).law  # Ghaednia et al.
+    1
     """
 
-    def __init__(self, eps_y: float, nu: float) -> None:
+    # defaults of a cache pickled before strain hardening (its __dict__ lacks them)
+    et_ratio: float = 0.0
+    loading: str = "jackson-green"
+
+    def __init__(self, eps_y: float, nu: float, et_ratio: float = 0.0, loading: str | None = None) -> None:
         self.eps_y, self.nu = eps_y, nu
+        self.et_ratio = float(real_scalar(et_ratio, "et_ratio"))
+        #: The loading law's public name (resolved: never None).
+        self.loading = resolve_loading(loading, self.et_ratio).name
         self._data: dict[Any, ForwardData] = {}
+
+    def limit(self, extrapolate: bool = False) -> float:
+        """The model's largest w* (-) for this material and law: 425, or a/R = 1 with ``extrapolate``
+        (:func:`fastrest.limit`)."""
+        return interference_limit(self.eps_y, self.nu, extrapolate=extrapolate, et_ratio=self.et_ratio,
+                                  loading=self.loading)
 
     def get(self, unloading: str = "jcg", *, w_max: float = 0.0, extrapolate: bool = False) -> ForwardData:
         """The table of one unloading model serving at least w* <= ``w_max``.
@@ -72,11 +101,11 @@ class ForwardCache:
         code = unloading_code(unloading)
         data = self._data.get(code)
         if data is None or data.w_max < w_max:
-            lim = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
+            lim = self.limit(extrapolate)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # issued once, by the surface
                 data = fw.forward_data(self.eps_y, self.nu, unloading, w_max=min(max(w_max, 2.0), lim),
-                                       extrapolate=extrapolate)
+                                       extrapolate=extrapolate, et_ratio=self.et_ratio, loading=self.loading)
             self._data[code] = data
         return data
 
@@ -110,7 +139,7 @@ class ForwardCache:
         RuntimeError
             The solver failed (a bug).
         """
-        lim = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
+        lim = self.limit(extrapolate)
         data = self._data.get(unloading_code(unloading))
         if data is None:
             data = self.get(unloading, w_max=min(w_guess, lim), extrapolate=extrapolate)

@@ -20,8 +20,10 @@ from .expectations import (ZS_UNDERFLOW, gw_hertz_sums_kernel, gw_impact_sums_ke
 
 __all__ = ["HERTZ_CAP", "check_resolved", "hertz_estimate", "solve_impacts"]
 
-#: The Hertz estimate (the start of every JG solve) stops at this many times the w* where the law
-#: ends (a/R = 1): JG summits sink deeper than Hertz ones, so beyond it so does the impact.
+#: The Hertz estimate (the start of every solve under the loading law) stops at this many times the
+#: w* where the law ends (a/R = 1): JG summits (and Ghaednia's, whose P* lies between JG's and
+#: Hertz's) sink deeper than Hertz ones (bar a few % of force near w* = 1.9), so beyond it so does
+#: the impact.
 HERTZ_CAP = 4.0
 
 
@@ -121,14 +123,14 @@ def _hertz_sums(law, g, zs_d, w_cap):
 @jit
 def _gw_hertz_kernel(g, energy, zs0, w_cap):
     """(status, zs_d, w* at the top) of the impact of energy ``energy`` (over U_c) with every
-    summit Hertzian: the estimate that starts every JG solve and sizes its table. Trial points
+    summit Hertzian: the estimate that starts every solve and sizes its table. Trial points
     whose heights reach past ``w_cap`` are moved to it; NEEDS_TABLE: the solution is beyond it."""
     return _approach(_hertz_sums, None, g, energy, zs0, w_cap, True)
 
 
 @jit
 def _gw_approach_kernel(data, g, energy, zs0, w_model):
-    """(status, zs_d, w* at the top) of the deepest approach under the JG law.
+    """(status, zs_d, w* at the top) of the deepest approach under the loading law of ``data``.
 
     A trial point whose heights reach past the table (data.w_max) returns NEEDS_TABLE with the w*
     it needs. Once the table reaches ``w_model`` (the model's end) trial points are moved to it,
@@ -205,8 +207,9 @@ def check_resolved(g: Any, energy: NDArray[np.float64], where: Callable[[int], s
 
     Notes
     -----
-    The bound is N E[F] with the Hertz law at zs_d = ZS_UNDERFLOW (JG's F is the same there or
-    larger). A pdf with bounded support has no such limit.
+    The bound is N E[F] with the Hertz law at zs_d = ZS_UNDERFLOW, whatever the loading law (it
+    tests the resolution of the height density, not the law). A pdf with bounded support has no
+    such limit.
 
     Examples
     --------
@@ -248,7 +251,7 @@ def hertz_estimate(g: Any, energy: NDArray[np.float64], w_cap: float) -> NDArray
     Notes
     -----
     Solves N E[F] = E (JGM eq 29 summed over the height distribution) with F = w^2.5; the start of
-    every JG solve and the size of its table.
+    every solve under the loading law and the size of its table.
 
     Examples
     --------
@@ -266,12 +269,13 @@ def hertz_estimate(g: Any, energy: NDArray[np.float64], w_cap: float) -> NDArray
 
 
 def solve_impacts(data: Any, g: Any, energy: NDArray[np.float64], zs0: NDArray[np.float64], w_model: float) -> NDArray[np.float64]:
-    """Impacts on a statistical surface under the JG law, with the forward table ``data``.
+    """Impacts on a statistical surface under the loading law of the forward table ``data``.
 
     Parameters
     ----------
     data : fastrest.forward.ForwardData
-        Forward table of one summit (loading energy, force, unloading).
+        Forward table of one summit (loading energy, force, unloading; its loading law, JG or
+        Ghaednia et al. with hardening, is every summit's).
     g : GWData
         The surface's height statistics.
     energy : ndarray

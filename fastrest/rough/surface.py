@@ -15,10 +15,11 @@ import numpy as np
 from .._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool,
                            check_finite_positive, real_scalar, warn, warn_if_outside_validated)
 from ..energy import f_star_kernel
-from ..limits import interference_limit, interference_limit_message
+from ..limits import interference_limit_message
 from ..impact import Impact
+from ..loading import LAWS, NAMES, LoadingLaw, resolve as resolve_loading
 from ..materials import Material
-from ..unloading import unloading_code
+from ..unloading import unloading_code, warn_if_unfitted
 from . import explicit, statistical
 from .common import NEEDS_TABLE, OK, check_speeds, energy_parts
 from .forward_cache import ForwardCache
@@ -36,8 +37,9 @@ RHO_W_RANGE = (1e-6, 1e12)
 class RoughSurface:
     """A rough surface of spherical summits of radius ``R_a``, struck by a rigid flat.
 
-    Every summit follows the JGM single-sphere law on loading and unloads elastically; summits do
-    not interact and the bulk under them does not deform (Greenwood-Williamson assumptions).
+    Every summit follows the JGM single-sphere law on loading (Jackson-Green, or with strain
+    hardening Ghaednia et al. 2019: ``et_ratio``) and unloads elastically; summits do not interact
+    and the bulk under them does not deform (Greenwood-Williamson assumptions).
 
     Parameters
     ----------
@@ -51,6 +53,15 @@ class RoughSurface:
     gw : GreenwoodWilliamson or dict, optional
         Statistical description (summit density, height standard deviation, nominal area, pdf).
         Exactly one of ``heights`` and ``gw``.
+    et_ratio : float, optional
+        Strain hardening of the summits: tangent modulus over Young's modulus Et/E (-),
+        0 <= et_ratio < 1, keyword-only; default None: the material's own Et/E
+        (``Material(..., Et=...)``; 0, elastic-perfectly plastic, without Et). Given for a material
+        with Et > 0, it must equal that material's Et/E.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        Loading law of every summit (:mod:`fastrest.loading`), keyword-only; None (default) picks
+        Jackson-Green for et_ratio = 0 and Ghaednia et al. (2019) above (equal to Jackson-Green bit
+        for bit at et_ratio = 0).
 
     Attributes
     ----------
@@ -58,6 +69,12 @@ class RoughSurface:
         One summit against the rigid flat (its E_eff, omega_c, P_c, U_c, eps_y, nu).
     eps_y, nu : float
         Sy/E' (-) and Poisson's ratio (-) of the summits.
+    et_ratio : float
+        Et/E of the summits (-).
+    loading : str or None
+        The loading law as given (its name), None for the default.
+    law : fastrest.loading.LoadingLaw
+        The loading law in use (resolved from ``loading`` and ``et_ratio``).
     omega_c, P_c, U_c : float
         Critical interference (m), force (N) and energy (J) of one summit (JGM eqs 4, 6, 24).
     sigma : float
@@ -71,10 +88,11 @@ class RoughSurface:
     ------
     TypeError
         If ``material`` is not a Material, ``gw`` not a GreenwoodWilliamson or dict, or a number
-        is not real.
+        (``et_ratio`` included) is not real.
     ValueError
-        For R_a or heights out of range, neither or both of ``heights`` and ``gw``, or
-        sigma/omega_c outside :data:`RHO_W_RANGE` (statistical).
+        For R_a or heights out of range, neither or both of ``heights`` and ``gw``,
+        sigma/omega_c outside :data:`RHO_W_RANGE` (statistical), ``et_ratio`` outside [0, 1), an
+        unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``.
 
     Warns
     -----
@@ -95,13 +113,30 @@ class RoughSurface:
     >>> s = rough.RoughSurface(steel, 100e-6, gw=dict(eta=1e10, sigma=50e-9, A_n=1e-4))
     >>> 0.0 < s.impact(0.1, 0.01).e < 1.0
     True
+
+    A strain-hardening material (Et = E/100) rebounds better (Brake unloading, the pairing the
+    hardening law's peers use):
+
+    >>> h = rough.RoughSurface(steel, 100e-6, gw=dict(eta=1e10, sigma=50e-9, A_n=1e-4), et_ratio=0.01)
+    >>> h.law.name, bool(h.impact(0.1, 0.01, "brake").e > s.impact(0.1, 0.01, "brake").e)
+    ('ghaednia', True)
     """
 
     def __init__(self, material: Material, R_a: float, heights: ArrayLike | None = None,
-                 gw: GreenwoodWilliamson | dict[str, Any] | None = None) -> None:
+                 gw: GreenwoodWilliamson | dict[str, Any] | None = None, *, et_ratio: float | None = None,
+                 loading: str | LoadingLaw | None = None) -> None:
         if not isinstance(material, Material):
             raise TypeError("material must be a fastrest.Material")
         self.material = material
+        own = float(getattr(material, "et_ratio", 0.0))  # Et/E of a Material(..., Et=...)
+        if et_ratio is None:
+            et_ratio = own
+        elif own > 0.0 and float(real_scalar(et_ratio, "et_ratio")) != own:
+            raise ValueError(f"et_ratio = {et_ratio!r} contradicts the material's Et/E = {own!r}: give the "
+                             "tangent modulus once (Material(..., Et=...) or et_ratio=)")
+        self.et_ratio = float(real_scalar(et_ratio, "et_ratio"))
+        self.law = resolve_loading(loading, self.et_ratio)  # validates et_ratio and loading
+        self.loading = None if loading is None else self.law.name
         self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
         try:
             self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
@@ -115,11 +150,16 @@ class RoughSurface:
         self.eps_y, self.nu = float(ip.eps_y), float(ip.nu)
         warn_if_outside_validated(self.eps_y, self.nu)
         self.omega_c, self.P_c, self.U_c = ip.omega_c, ip.P_c, ip.U_c
-        self._tables = ForwardCache(self.eps_y, self.nu)
+        self._tables = ForwardCache(self.eps_y, self.nu, self.et_ratio, self.law.name)
         if heights is not None:
             self._init_explicit(heights)
         else:
             self._init_statistical(gw)
+
+    # defaults of a surface pickled before strain hardening (its __dict__ lacks them)
+    et_ratio: float = 0.0
+    loading: str | None = None
+    law: LoadingLaw = LAWS[NAMES[0]]
 
     # set by _init_explicit or _init_statistical: one of heights and gw is None
     kind: str
@@ -164,8 +204,18 @@ class RoughSurface:
     def __repr__(self):
         desc = (f"{self.n_summits} summits" if self.kind == "explicit"
                 else f"GW eta={self.gw.eta!r}, A_n={self.gw.A_n!r}")
+        law = "".join(f", {k}={v!r}" for k, v in self._law_params().items())
         return (f"RoughSurface({self.material!r}, R_a={self.R_a!r}, {desc}, sigma={self.sigma!r}, "
-                f"psi={self.plasticity_index:.4g})")
+                f"psi={self.plasticity_index:.4g}{law})")
+
+    def _law_params(self):
+        """et_ratio and loading where not the defaults (for repr and :meth:`params`)."""
+        p: dict[str, Any] = {}
+        if self.et_ratio != 0.0:
+            p["et_ratio"] = self.et_ratio
+        if self.loading is not None:
+            p["loading"] = self.loading
+        return p
 
     @property
     def plasticity_index(self) -> float:
@@ -219,8 +269,9 @@ class RoughSurface:
         Returns
         -------
         dict
-            material, R_a (m), and heights (m) or gw: ``RoughSurface(**s.params())`` is an equal
-            surface (used by :func:`fastrest.rough.sweep` to ship surfaces to Dask).
+            material, R_a (m), and heights (m) or gw, and et_ratio (-) and loading where not the
+            defaults: ``RoughSurface(**s.params())`` is an equal surface (used by
+            :func:`fastrest.rough.sweep` to ship surfaces to Dask).
 
         Examples
         --------
@@ -235,6 +286,7 @@ class RoughSurface:
             p["heights"] = self.heights
         else:
             p["gw"] = self.gw
+        p.update(self._law_params())
         return p
 
     def forward(self, unloading: str = "jcg", *, w_max: float = 0.0, extrapolate: bool = False) -> ForwardData:
@@ -253,7 +305,7 @@ class RoughSurface:
         -------
         ForwardData
             Loading energy, force and unloading of one summit, JGM eqs (9), (14), (19), (25),
-            (33)/(35), (38) (:mod:`fastrest.forward`).
+            (33)/(35), (38) (:mod:`fastrest.forward`), under the surface's loading law.
 
         Raises
         ------
@@ -322,6 +374,7 @@ class RoughSurface:
         M = float(check_finite_positive(real_scalar(M, "M"), "M", "(kg, mass of the flat)"))
         extrapolate = check_bool(extrapolate, "extrapolate")
         flat, shape = check_speeds(V1)
+        warn_if_unfitted(unloading, self.et_ratio)  # JCG/Etsion with hardening: an extrapolation
         e_hi, e_lo = energy_parts(flat, M, self.U_c)  # (V1/V_c)^2: impact energy over U_c
         bad = ~(np.isfinite(e_hi) & (e_hi >= sys.float_info.min))
         if np.any(bad):
@@ -340,7 +393,7 @@ class RoughSurface:
         out = self._assemble(flat, M, e_hi, raw)
         if extrapolate and np.any(out["w_star_max"] > OMEGA_M_STAR_MAX):
             warn(f"summits loaded past w* = {OMEGA_M_STAR_MAX:g}, the largest interference "
-                 "JGM computed; the JG law is not validated there", ExtrapolationWarning)
+                 f"JGM computed; the {self.law.short} law is not validated there", ExtrapolationWarning)
 
         def shaped(a):
             a = a.reshape(shape)
@@ -354,8 +407,8 @@ class RoughSurface:
         summits absorb with each at the end of the model (N F(w*_end) U_c: a bound, as every summit
         lies at or below the tallest). Such an impact is certainly past the model's range; below
         the bound the solver finds out (and says so) itself."""
-        w_end = interference_limit(self.eps_y, self.nu, extrapolate=extrapolate)
-        cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu, 0, 0.0)  # over U_c
+        w_end = self._tables.limit(extrapolate)
+        cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu, self.law.code, self.et_ratio)
         over = e_hi > cap
         if not np.any(over):
             return
@@ -369,7 +422,7 @@ class RoughSurface:
             f"({'a/R = 1' if extrapolate else 'JGM range'}). V1 must be below "
             f"{math.sqrt(2.0 * cap_j / M):.6g} m/s at this M (M below {2.0 * cap_j / v**2:.6g} kg at this V1)")
 
-    # --- solving: a Hertz estimate, then the JG law on a forward table grown as needed -----------
+    # --- solving: a Hertz estimate, then the loading law on a forward table grown as needed -------
 
     def _speed(self, energy, M):
         """V1 (m/s) of the impact energy ``energy`` (over U_c): for messages."""
@@ -389,8 +442,8 @@ class RoughSurface:
 
     def _solve_explicit(self, e_hi, e_lo, unloading, extrapolate, M):
         h = self._h
-        # the Hertz estimate starts every JG solve (independent of the table held, so results do
-        # not depend on what the surface computed before); JG summits sink deeper: table to 2x
+        # the Hertz estimate starts every solve (independent of the table held, so results do not
+        # depend on what the surface computed before); JG/Ghaednia summits sink deeper: table to 2x
         x0, d0 = explicit.hertz_estimate(h, e_hi, e_lo)
         return self._solve(
             lambda data, w_model: explicit.solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model),
@@ -399,9 +452,9 @@ class RoughSurface:
     def _solve_statistical(self, energy, unloading, extrapolate, M):
         g = self._gwdata
         statistical.check_resolved(g, energy, lambda k: f"V1 = {self._speed(energy[k], M)!r} m/s")
-        # JG summits sink deeper than Hertz ones: a Hertz estimate past HERTZ_CAP x the law's end
-        # (a/R = 1) means the impact itself is past it
-        w_end = interference_limit(self.eps_y, self.nu, extrapolate=True)
+        # JG (and Ghaednia) summits sink deeper than Hertz ones, bar a few % near w* = 1.9: a Hertz
+        # estimate past HERTZ_CAP x the law's end (a/R = 1) means the impact itself is past it
+        w_end = self._tables.limit(True)
         hz = statistical.hertz_estimate(g, energy, statistical.HERTZ_CAP * w_end)
         if np.any(hz[0] == NEEDS_TABLE):
             k = int(np.flatnonzero(hz[0] == NEEDS_TABLE)[0])

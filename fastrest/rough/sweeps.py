@@ -87,7 +87,8 @@ def _failed(v, m, unloading):
 
 def surface_from_params(material: Material | None = None, R_a: Any = None, heights: ArrayLike | None = None,
                         gw: GreenwoodWilliamson | dict[str, Any] | None = None, gaussian: Sequence[Any] | None = None, E: float | None = None,
-                        nu: float | None = None, Sy: float | None = None) -> RoughSurface:
+                        nu: float | None = None, Sy: float | None = None, et_ratio: float = 0.0,
+                        loading: str | None = None) -> RoughSurface:
     """Build a :class:`RoughSurface` from plain parameters: the default factory of :func:`sweep`.
 
     Parameters
@@ -105,6 +106,10 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
         :func:`gaussian_summits` where the task runs (nothing large is shipped).
     E, nu, Sy : float, optional
         Young's modulus (Pa), Poisson's ratio (-), yield strength (Pa), without ``material``.
+    et_ratio : float, optional
+        Strain hardening Et/E of the summits (-), 0 <= et_ratio < 1; default 0.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The summits' loading law; None picks it from ``et_ratio`` (:class:`RoughSurface`).
 
     Returns
     -------
@@ -114,7 +119,7 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
     ------
     ValueError
         Neither ``material`` nor all of E, nu, Sy; both ``heights`` and ``gaussian``; or what
-        :class:`RoughSurface` refuses.
+        :class:`RoughSurface` refuses (``et_ratio`` outside [0, 1) among them).
 
     Notes
     -----
@@ -126,6 +131,9 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
     >>> s = rough.surface_from_params(E=200e9, nu=0.3, Sy=1e9, R_a=1e-4, gaussian=(100, 50e-9, 1))
     >>> s.kind, s.n_summits
     ('explicit', 100)
+    >>> rough.surface_from_params(E=200e9, nu=0.3, Sy=1e9, R_a=1e-4, gaussian=(100, 50e-9, 1),
+    ...                           et_ratio=0.02).law.name
+    'ghaednia'
     """
     if material is None:
         if E is None or nu is None or Sy is None:
@@ -135,7 +143,7 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
         if heights is not None:
             raise ValueError("give only one of heights= and gaussian=")
         heights = gaussian_summits(*gaussian)
-    return RoughSurface(material, R_a, heights=heights, gw=gw)
+    return RoughSurface(material, R_a, heights=heights, gw=gw, et_ratio=et_ratio, loading=loading)
 
 
 def _sweep_task(factory, params, array_keys, *args):
@@ -154,9 +162,9 @@ def _sweep_task(factory, params, array_keys, *args):
         return exc
 
 
-def _rebuild_surface(material, R_a, heights=None, gw=None):
+def _rebuild_surface(material, R_a, heights=None, gw=None, et_ratio=0.0, loading=None):
     """Factory for RoughSurface objects sent to Dask (their :meth:`RoughSurface.params`)."""
-    return RoughSurface(material, R_a, heights=heights, gw=gw)
+    return RoughSurface(material, R_a, heights=heights, gw=gw, et_ratio=et_ratio, loading=loading)
 
 
 def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jcg", *, extrapolate: bool = False,
@@ -168,7 +176,8 @@ def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jc
     ----------
     surfaces : sequence of RoughSurface or of dict
         Each dict holds keyword arguments of ``factory`` (default :func:`surface_from_params`:
-        material or E/nu/Sy, R_a, and heights, gw or gaussian=(n, sigma, seed)).
+        material or E/nu/Sy, R_a, and heights, gw or gaussian=(n, sigma, seed); optionally
+        et_ratio and loading, the summits' strain hardening and loading law).
     V1 : float or array_like
         Impact speeds (m/s), > 0; the same for every surface.
     M : float or sequence of float
