@@ -6,6 +6,8 @@
    time steps (paths of real impacts: Hertz, JG loading, unloading and gaps), against a plain
    Hertz force ``w^1.5`` evaluated in the same loop and run (interleaved rounds; the ratio is the
    median of per-round ratios), and the exact JG law (:func:`fastrest.contact.p_star_kernel`);
+   also with strain hardening (Ghaednia et al.'s law, Et/E = 0.01, Brake unloading: its loading
+   reads the same cell rows as JG's, so it should cost the same);
 2. the time of one time-stepped impact (:meth:`fastrest.ContactLaw.impact`) at the step count
    docs/model.md quotes;
 3. the convergence table behind the time-step rule: worst relative error of e from velocity
@@ -14,7 +16,8 @@
    the 20-50 of DEM codes to 64000), with and without locating the crossing of w* = 1.9.
 
 ``python -m bench.force_law --convergence-only [--steps N ...]`` runs only part 3 and prints its
-rows (Markdown, as in docs/model.md section 10) without writing the file.
+rows (Markdown, as in docs/model.md section 10) without writing the file; ``--cost-only`` only
+part 1, printed.
 """
 import argparse
 import datetime
@@ -109,13 +112,15 @@ def cost(cfg, log):
     cases = {"hertz": (lambda: _loop_hertz(w, 1), n)}
     for m in NAMES:
         cases[f"contact_force ({m})"] = (lambda m=m: _loop_law(laws[m].data, states, w, 1), n)
+    hard = fastrest.contact_law(0.005, 0.33, "brake", et_ratio=0.01)  # Ghaednia et al. (issue 23)
+    cases["contact_force (brake, Et/E = 0.01)"] = (lambda: _loop_law(hard.data, states, w, 1), n)
     cases["exact JG law, no history"] = (lambda: _loop_exact(w, 0.005, 0.33, 1), n)
     t = interleaved(cases, cfg["rounds"], ref="hertz")
     frac = {"gap (w <= 0)": float(np.mean(w <= 0)), "Hertz (0 < w <= 1.9)": float(np.mean((w > 0) & (w <= 1.9))),
             "beyond 1.9": float(np.mean(w > 1.9))}
     law = laws["jcg"]
     imp = {f"V1* = {v:g}": interleaved({"impact": (lambda v=v: law.impact(v, steps_per_contact=STEPS_1E8), 1)}, cfg["rounds"])["impact"]
-           for v in (1.5, 30.0)}
+           for v in (1.5, 30.0)} if cfg.get("impacts", True) else {}
     log(f"  contact_force / hertz: {t['contact_force (jcg)'].ratio:.2f}")
     return t, frac, imp
 
@@ -213,6 +218,7 @@ def main(argv=None):
     p.add_argument("--out", default=str(HERE / "FORCE_LAW.md"))
     p.add_argument("--convergence-only", action="store_true",
                    help="only the steps-per-contact table (part 3): print its rows, write nothing")
+    p.add_argument("--cost-only", action="store_true", help="only the cost per call (part 1): print it, write nothing")
     p.add_argument("--steps", type=int, nargs="+", metavar="N",
                    help=f"steps per Hertz contact duration for part 3 [default: {' '.join(map(str, STEPS))}]")
     a = p.parse_args(argv)
@@ -220,6 +226,11 @@ def main(argv=None):
     steps = a.steps or (STEPS[:6] if a.quick else STEPS)
     cfg = dict(quick=a.quick, contacts=64 if a.quick else 256, path_steps=400 if a.quick else 2000,
                rounds=5 if a.quick else 21, steps=steps)
+    if a.cost_only:
+        t, frac, _ = cost(dict(cfg, impacts=False), print)
+        print("| force | ns per call (median) | x Hertz |\n|---|---|---|")
+        print("\n".join(f"| {name} | {x.median * 1e9:.2f} | {x.ratio:.2f} |" for name, x in t.items()))
+        return 0
     if a.convergence_only:
         conv = convergence(cfg, print)
         print("| steps per Hertz contact duration N | 1.9 crossing located | not located |")

@@ -20,7 +20,7 @@ from ._jit import jit, mul_rn
 
 __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
            "critical_interference", "critical_force", "critical_area", "critical_energy",
-           "critical_velocity", "CriticalScales", "critical_scales"]
+           "critical_velocity", "CriticalScales", "critical_scales", "yield_et_ratio"]
 
 # The jit NaN contract (docs/architecture.md): every function here returns NaN outside its domain
 # (an input not > 0 where it must be, a division by zero, a result that is not finite) and never
@@ -389,6 +389,12 @@ def critical_velocity(U_c, mass):
     return _finite(math.sqrt(2.0 * U_c / mass))
 
 
+@jit
+def _yields_first(nu1, Sy1, nu2, Sy2):
+    """True if body 1 yields first: the smaller C(nu) Sy (JGM after eq 5; ties go to body 1)."""
+    return c_of_nu(nu1) * Sy1 <= c_of_nu(nu2) * Sy2
+
+
 CriticalScales = namedtuple("CriticalScales", ["E_eff", "R_eff", "mass", "nu", "Sy", "C", "eps_y",
                                                "omega_c", "P_c", "A_c", "U_c", "V_c"])
 CriticalScales.__doc__ = """Effective properties and critical values of one contact (SI units).
@@ -479,7 +485,7 @@ def critical_scales(E1, nu1, Sy1, R1, m1, E2, nu2, Sy2, R2, m2):
           and E1 < math.inf and R1 < math.inf and m1 < math.inf)
     c1 = c_of_nu(nu1)
     c2 = c_of_nu(nu2)
-    first = c1 * Sy1 <= c2 * Sy2
+    first = _yields_first(nu1, Sy1, nu2, Sy2)
     nu = nu1 if first else nu2
     Sy = Sy1 if first else Sy2
     C = c1 if first else c2
@@ -503,3 +509,63 @@ def critical_scales(E1, nu1, Sy1, R1, m1, E2, nu2, Sy2, R2, m2):
             and s.U_c < math.inf and s.V_c < math.inf and s.eps_y < math.inf):
         return CriticalScales(nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan)
     return s
+
+
+@jit
+def yield_et_ratio(E1, nu1, Sy1, Et1, E2, nu2, Sy2, Et2):
+    """Strain hardening of a contact: Et/E of the body that yields first (-), for the loading law.
+
+    Parameters
+    ----------
+    E1, nu1, Sy1, Et1 : float
+        Body 1: Young's modulus (Pa), Poisson's ratio (-), yield strength (Pa; ``inf`` never
+        yields), tangent modulus of its plastic range (Pa; 0: elastic-perfectly plastic).
+    E2, nu2, Sy2, Et2 : float
+        Body 2, the same; a rigid flat is ``E2 = Sy2 = inf`` (``nu2``, ``Et2`` unused: pass 0.0).
+
+    Returns
+    -------
+    float
+        et_ratio = Et/E (-) of the body with the smaller C(nu) Sy, the one that supplies nu, Sy
+        and C to :func:`critical_scales` (the same rule, the same compiled comparison): pass it
+        with that contact's eps_y and nu to the law (:func:`fastrest.contact_law` ``et_ratio=``).
+        NaN if neither body can yield, an input is not positive where it must be (E, Sy; nu
+        outside [0, 0.5); E1 not finite), or the yielding body's Et is not in [0, E) (a jit
+        function: it never raises). Integers and float32 are taken as float64.
+
+    Notes
+    -----
+    A separate function rather than a field of :class:`CriticalScales`, so code unpacking
+    :func:`critical_scales` keeps working: hardening does not change the critical values (the
+    onset of yield, JGM eqs 4-7), only the loading law above it (Ghaednia et al. 2019,
+    :mod:`fastrest.loading`), which reads Et/E of the yielding material. Also exported as
+    :func:`fastrest.jit.yield_et_ratio`.
+
+    Examples
+    --------
+    A steel sphere (Et = 2 GPa) on a rigid flat, and on a softer aluminium flat (Et = 0.7 GPa),
+    which yields first:
+
+    >>> import math
+    >>> from fastrest.critical import yield_et_ratio
+    >>> inf = math.inf
+    >>> yield_et_ratio(200e9, 0.3, 1.0e9, 2e9, inf, 0.0, inf, 0.0)
+    0.01
+    >>> yield_et_ratio(200e9, 0.3, 1.0e9, 2e9, 70e9, 0.33, 0.28e9, 0.7e9)
+    0.01
+    >>> math.isnan(yield_et_ratio(200e9, 0.3, 1.0e9, 200e9, inf, 0.0, inf, 0.0))  # Et = E
+    True
+    """
+    E1, nu1, Sy1, Et1 = np.float64(E1), np.float64(nu1), np.float64(Sy1), np.float64(Et1)
+    E2, nu2, Sy2, Et2 = np.float64(E2), np.float64(nu2), np.float64(Sy2), np.float64(Et2)
+    ok = (E1 > 0.0 and E1 < math.inf and E2 > 0.0 and Sy1 > 0.0 and Sy2 > 0.0 and nu1 >= 0.0 and nu1 < 0.5
+          and nu2 >= 0.0 and nu2 < 0.5 and min(Sy1, Sy2) < math.inf)
+    if not ok:
+        return math.nan
+    first = _yields_first(nu1, Sy1, nu2, Sy2)
+    E = E1 if first else E2
+    Et = Et1 if first else Et2
+    h = Et / E
+    if not (Et >= 0.0 and Et < E and h >= 0.0 and h < 1.0):  # also NaN
+        return math.nan
+    return h

@@ -6,6 +6,8 @@ step, for the force of each contact at its current interference. The JGM ingredi
 
 * **virgin loading** (w above the largest interference reached so far, w_max): the Jackson-Green
   law, Hertz P* = w^1.5 up to w = 1.9 (eq 14), JG's eq (9) above (it drops by ~0.16 % at 1.9);
+  with strain hardening (``et_ratio`` = Et/E > 0) Ghaednia et al.'s (2019) law instead
+  (:mod:`fastrest.loading`), the same at Et/E = 0 bit for bit;
 * **unloading and reloading** below w_max: elastic, eq (32), through (w_max, P*(w_max)) and the
   residual interference w_res*(w_max) of the unloading model (eq 35 JCG, eq 33 Etsion, or
   Brake's), P* = P_max ((w - w_res)/(w_max - w_res))^1.5, and 0 at or below w_res (the contact
@@ -20,7 +22,9 @@ step, for the force of each contact at its current interference. The JGM ingredi
 
 One impact loaded to w_m and unloaded dissipates F(w_m) - P_m (w_m - w_res), in U_c units, which
 is (1 - e^2) V1*^2 of the energy balance (eq 38): integrated in time, this law reproduces the e of
-:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 10).
+:func:`fastrest.curve` (tests/test_force_law.py; step counts in docs/model.md section 10). The
+elastic branch stores and returns energy without loss, so the energy a contact has dissipated is a
+function of its largest interference alone: :func:`dissipated_energy` reads it from the state.
 
 The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted to eq (9)
 (:func:`fastrest.forward.P_table_forward`, ~1e-14 relative), the law's data being the material's
@@ -28,7 +32,8 @@ The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted t
 
 From Numba: ``law.data`` and :func:`contact_force` (re-exported by :mod:`fastrest.jit`), one
 state row of :data:`STATE_SIZE` float64 per contact, zeros for a virgin contact. Several materials
-in one loop: :func:`stack_laws` and :func:`contact_force_stacked`, indexed by material.
+in one loop: :func:`stack_laws` and :func:`contact_force_stacked`, indexed by material. The
+energy each contact has dissipated: :func:`dissipated_energy` and :func:`dissipated_energy_stacked`.
 """
 from __future__ import annotations
 
@@ -42,12 +47,12 @@ import numpy as np
 
 from ._jit import jit
 from ._validation import as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu, real_scalar
-from .contact import W_SWITCH, area_exponent
+from .loading.jackson_green import W_SWITCH, area_exponent
 from . import loading as _loading
 from .loading import p_star_above, resolve as resolve_loading
 from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
-from .forward import P_table_forward, forward_data
+from .forward import ForwardData, P_table_forward, forward_data, loss_forward
 from .interpolation import cell_index, cell_polynomial
 from .limits import interference_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
 from .scene import material_index
@@ -55,7 +60,7 @@ from . import unloading as _unloading
 from .unloading import elastic
 
 __all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time", "StackedLaws",
-           "stack_laws", "contact_force_stacked"]
+           "stack_laws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked"]
 
 #: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res*, and
 #: delta = w_max - w_res* (0 until the contact first unloads from w_max).
@@ -87,8 +92,8 @@ def contact_force(law, state, w):
     Notes
     -----
     Virgin loading (w above the largest interference so far): the Jackson-Green law, Hertz w^1.5
-    up to w = 1.9 (JGM eq 14) and eq (9) above, from the cells of ``law.p_rows`` (~1e-14
-    relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
+    up to w = 1.9 (JGM eq 14) and eq (9) above (Ghaednia et al.'s with hardening,
+    ``law.et_ratio`` > 0), from the cells of ``law.p_rows`` (~1e-14 relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
     maximum point and the unloading model's residual interference (eq 35, eqs 33-34 or Brake's);
     0 at or below w_res*. See docs/model.md section 10. Inlined into the calling jitted loop; also
     exported as :func:`fastrest.jit.contact_force`.
@@ -146,7 +151,7 @@ def _force_step(model, eps_y, nu, w_end, rows, shift, base, loading, et_ratio, s
 
 
 StackedLaws = namedtuple("StackedLaws", ["model", "eps_y", "nu", "w_max", "shift", "base", "p_rows",
-                                         "omega_c", "P_c", "law", "et_ratio"])
+                                         "omega_c", "P_c", "law", "et_ratio", "f_rows"])
 StackedLaws.__doc__ = """The contact laws of several materials in one Numba-friendly data: arrays indexed by material.
 
 Build it with :func:`stack_laws` (not by hand) and pass it, with a material index per contact, to
@@ -172,6 +177,14 @@ omega_c, P_c : float64 ndarray
     units of P_c at w = omega/omega_c, as :func:`contact_force` does; a DEM code whose contacts of
     one material differ in radius computes omega_c and P_c per contact
     (:func:`fastrest.jit.critical_scales`).
+law : int64 ndarray
+    Loading law code of each material (:data:`fastrest.jit.JACKSON_GREEN`,
+    :data:`fastrest.jit.GHAEDNIA`).
+et_ratio : float64 ndarray
+    Tangent modulus over Young's modulus Et/E of each material (-); 0 for Jackson-Green.
+f_rows : ndarray
+    (n, 8) float64: every material's rows of the loading energy F, placed as ``p_rows``
+    (:func:`dissipated_energy_stacked` reads them).
 
 Examples
 --------
@@ -238,6 +251,102 @@ def contact_force_stacked(laws, material, state, w):
                        state, w)
 
 
+@jit(inline=True)
+def dissipated_energy(law, state):
+    """Energy the contact has dissipated so far, over U_c, from its history row (-).
+
+    Parameters
+    ----------
+    law : ForwardData
+        ``ContactLaw.data`` of the material (:func:`contact_law`), the law that built ``state``.
+    state : float64 array of :data:`STATE_SIZE`
+        The contact's history, as :func:`contact_force` leaves it (not changed).
+
+    Returns
+    -------
+    float
+        D = F(w_max) - P*(w_max) (w_max - w_res*) (-) in units of U_c = (2/5) P_c omega_c (JGM
+        eq 24): the loading work to the largest interference reached minus what the elastic
+        branch through it returns. 0 for a virgin row (zeros) and for w_max <= 1 (elastic; also
+        for w_max <= 1.9 with Etsion or Brake unloading). NaN for a row that is NaN (history
+        lost), has w_max < 0 or w_max past the law's ``w_max``, or an unknown unloading model (a
+        jit kernel: it never raises).
+
+    Notes
+    -----
+    :func:`fastrest.forward.loss_forward` at w_max = ``state[0]``: JGM eqs (25), (38) with
+    eq (32) and the unloading model's w_res*, without cancellation. The elastic branch (eq 32)
+    is a function of w alone, so unloading and reloading below w_max dissipate nothing and D
+    depends on w_max only: the work the contact has received is D plus the energy it stores at
+    its current interference. After one impact at V1* (loaded to w_m*, separated),
+    D = F(w_m*) - R = (1 - e^2) V1*^2 (eq 38). In joules: D (2/5) P_c omega_c, or D U_c with
+    U_c from :func:`fastrest.jit.critical_scales`. Inlined into the calling jitted loop; also
+    exported as :func:`fastrest.jit.dissipated_energy`.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest.jit import contact_force, dissipated_energy
+    >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+    >>> state = law.new_state()
+    >>> dissipated_energy(law.data, state)  # virgin
+    0.0
+    >>> p = contact_force(law.data, state, 6.549856322605)  # loaded to w_m* of V1* = 10
+    >>> p = contact_force(law.data, state, 2.0)             # unloading: nothing more is lost
+    >>> round(dissipated_energy(law.data, state), 6)  # (1 - e^2) V1*^2 = 0.313202 * 100
+    31.320232
+    """
+    return loss_forward(law, state[0])
+
+
+@jit(inline=True)
+def dissipated_energy_stacked(laws, material, state):
+    """:func:`dissipated_energy` of a contact of material ``material`` of stacked laws (-).
+
+    Parameters
+    ----------
+    laws : StackedLaws
+        The materials' laws, from :func:`stack_laws`.
+    material : int
+        Index of the contact's material in ``laws``; an integer or an integer-valued float.
+    state : float64 array of :data:`STATE_SIZE`
+        The contact's history, as :func:`contact_force_stacked` leaves it (not changed).
+
+    Returns
+    -------
+    float
+        D (-) in units of U_c, bit for bit what :func:`dissipated_energy` gives with that
+        material's ``law.data``; NaN for a material index out of range, a fraction or a
+        non-finite one, and wherever :func:`dissipated_energy` gives NaN (a jit kernel: it never
+        raises).
+
+    Notes
+    -----
+    JGM eqs (25), (38) as :func:`dissipated_energy`, reading the material's fields from the
+    stacked arrays. Inlined into the calling jitted loop; also exported as
+    :func:`fastrest.jit.dissipated_energy_stacked`.
+
+    Examples
+    --------
+    >>> import fastrest
+    >>> from fastrest.force_law import contact_force_stacked, dissipated_energy_stacked, stack_laws
+    >>> laws = stack_laws([fastrest.contact_law(0.005, 0.33), fastrest.contact_law(0.004, 0.3, "brake")])
+    >>> state = fastrest.contact_law(0.005, 0.33).new_state()
+    >>> p = contact_force_stacked(laws, 0, state, 6.549856322605)
+    >>> round(dissipated_energy_stacked(laws, 0, state), 6)
+    31.320232
+    >>> dissipated_energy_stacked(laws, 2, state)  # no material 2
+    nan
+    """
+    k = material_index(material)
+    if k < 0 or k >= laws.eps_y.size:
+        return np.nan
+    eps_y, nu = laws.eps_y[k], laws.nu[k]
+    data = ForwardData(laws.model[k], eps_y, nu, c_of_nu(nu), area_exponent(eps_y), laws.w_max[k], laws.shift[k],
+                       laws.base[k], laws.f_rows, laws.p_rows, laws.law[k], laws.et_ratio[k])
+    return dissipated_energy(data, state)
+
+
 def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
     """One :class:`StackedLaws` holding several materials' contact laws, for
     :func:`contact_force_stacked` in a parallel DEM loop.
@@ -301,6 +410,7 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
         shift=np.array([law.data.shift for law in laws], dtype=np.int64),
         base=np.array([law.data.base for law in laws], dtype=np.int64) - offset,
         p_rows=np.ascontiguousarray(np.concatenate([law.data.p_rows for law in laws]), dtype=np.float64),
+        f_rows=np.ascontiguousarray(np.concatenate([law.data.f_rows for law in laws]), dtype=np.float64),
         omega_c=np.array([law.omega_c for law in laws], dtype=np.float64),
         P_c=np.array([law.P_c for law in laws], dtype=np.float64))
 
@@ -309,6 +419,12 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
 def _force_path(law, state, w, out):
     for i in range(w.size):
         out[i] = contact_force(law, state, w[i])
+
+
+@jit
+def _dissipated_rows(law, rows, out):
+    for i in range(out.size):
+        out[i] = dissipated_energy(law, rows[i])
 
 
 @jit
@@ -357,7 +473,8 @@ SCALE_BELOW = 2.0**-5
 
 @jit
 def _law_formula(law, w):
-    """P*(w) of the loading law by its formulas: Hertz up to 1.9 (eq 14), eq (9) above."""
+    """P*(w) of the loading law by its formulas: Hertz up to 1.9 (eq 14), eq (9) above (the
+    hardening law of ``law.law``/``law.et_ratio``, :func:`fastrest.loading.p_star_above`)."""
     if w <= W_SWITCH:
         return w * math.sqrt(w)
     return p_star_above(law.law, w, law.eps_y, law.nu, c_of_nu(law.nu), area_exponent(law.eps_y), law.et_ratio)
@@ -493,9 +610,11 @@ class ContactLaw:
 
     Notes
     -----
-    The Jackson-Green loading law (JGM eqs 8-15) with elastic unloading and reloading (eq 32)
-    through the residual interference of the unloading model (eq 35, eqs 33-34 or Brake's); see
-    the module docstring and docs/model.md section 10.
+    The Jackson-Green loading law (JGM eqs 8-15), or Ghaednia et al.'s (2019) with strain
+    hardening (:mod:`fastrest.loading`), with elastic unloading and reloading (eq 32) through the
+    residual interference of the unloading model (eq 35, eqs 33-34 or Brake's); see the module
+    docstring and docs/model.md section 10. The repr shows ``et_ratio`` where it is not 0 and
+    ``loading`` where it is not the one ``et_ratio`` picks.
 
     Examples
     --------
@@ -503,6 +622,8 @@ class ContactLaw:
     >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
     >>> law
     ContactLaw(eps_y=0.005, nu=0.33, unloading='jcg', w_max=30.0)
+    >>> fastrest.contact_law(0.005, 0.33, "brake", w_max=30.0, et_ratio=0.01)
+    ContactLaw(eps_y=0.005, nu=0.33, unloading='brake', w_max=30.0, et_ratio=0.01)
     >>> law.force([0.0, 10.0, 5.0, 10.0]).round(6)  # load, unload, reload
     array([ 0.      , 25.647583,  2.401153, 25.647583])
     """
@@ -517,8 +638,12 @@ class ContactLaw:
 
     def __repr__(self) -> str:
         units = "" if self.omega_c == 1.0 and self.P_c == 1.0 else f", omega_c={self.omega_c!r} m, P_c={self.P_c!r} N"
+        # hardening shown only where it is not the default (existing reprs, and doctests, unchanged)
+        hard = f", et_ratio={self.et_ratio!r}" if self.et_ratio != 0.0 else ""
+        if self.loading != resolve_loading(None, self.et_ratio).name:
+            hard += f", loading={self.loading!r}"
         return (f"ContactLaw(eps_y={self.eps_y!r}, nu={self.nu!r}, unloading={self.unloading!r}, "
-                f"w_max={self.w_max!r}{units})")
+                f"w_max={self.w_max!r}{hard}{units})")
 
     def new_state(self, n: int | None = None) -> NDArray[np.float64]:
         """Zeros: the history of ``n`` virgin contacts, for :func:`contact_force` and :meth:`force`.
@@ -599,8 +724,7 @@ class ContactLaw:
         _force_path(self.data, state, w, out)
         if np.isnan(out).any():
             i = int(np.flatnonzero(np.isnan(out))[0])
-            if w[i] > self.w_max and self.w_max < interference_limit(self.eps_y, self.nu, extrapolate=self.extrapolate,
-                                                              unloading=self.unloading):
+            if w[i] > self.w_max and self.w_max < self._full_limit():
                 raise ValueError(f"interference = {float(w[i] * self.omega_c)!r} is beyond this law's w_max = "
                                  f"{self.w_max!r} (in units of omega_c = {self.omega_c!r}): build it with a "
                                  "larger w_max (contact_law(..., w_max=...))")
@@ -608,20 +732,86 @@ class ContactLaw:
                                             self.extrapolate, "interference", self.unloading)
         return (out * self.P_c).reshape(x.shape)
 
+    def dissipated_energy(self, state: ArrayLike) -> float | NDArray[np.float64]:
+        """Energy one contact, or many, has dissipated so far, from its history (:func:`dissipated_energy`).
+
+        Parameters
+        ----------
+        state : array_like
+            A contact's history row (:data:`STATE_SIZE`,) or rows (..., :data:`STATE_SIZE`), as
+            :meth:`force` or :func:`contact_force` with this law left them (not changed).
+
+        Returns
+        -------
+        float or ndarray
+            The dissipated energy of each row: in units of U_c (-) for a normalised law
+            (``omega_c`` = ``P_c`` = 1), in joules for a dimensional one
+            (:meth:`fastrest.Impact.contact_law`: D (2/5) P_c omega_c, equal to D U_c of
+            :class:`fastrest.Impact` to rounding). A float for one row, else an array of the
+            rows' shape without the last axis.
+
+        Raises
+        ------
+        TypeError
+            Non-numbers.
+        ValueError
+            A last axis that is not :data:`STATE_SIZE` long; a row that is no history of this
+            law (NaN: history lost; w_max < 0 or past the law's ``w_max``; the message names the
+            row).
+
+        Notes
+        -----
+        D = F(w_max) - P*(w_max) (w_max - w_res*), JGM eqs (25), (32), (38): see
+        :func:`dissipated_energy`. It depends on the largest interference only (the elastic
+        branch returns what it stores).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> law = fastrest.contact_law(0.005, 0.33, w_max=30.0)
+        >>> state = law.new_state()
+        >>> law.force([6.549856322605, 0.0], state).round(6)  # loaded to w_m* of V1* = 10, separated
+        array([14.530473,  0.      ])
+        >>> round(law.dissipated_energy(state), 6)  # (1 - e^2) V1*^2, in units of U_c
+        31.320232
+        """
+        x = as_float_array(state, "state")
+        if x.ndim == 0 or x.shape[-1] != STATE_SIZE:
+            raise ValueError(f"state must have a last axis of {STATE_SIZE} values (ContactLaw.new_state()); "
+                             f"got shape {x.shape}")
+        rows = np.ascontiguousarray(x, dtype=np.float64).reshape(-1, STATE_SIZE)
+        out = np.empty(rows.shape[0])
+        _dissipated_rows(self.data, rows, out)
+        if np.isnan(out).any():
+            i = int(np.flatnonzero(np.isnan(out))[0])
+            where = "state" if x.ndim == 1 else f"state row {tuple(int(j) for j in np.unravel_index(i, x.shape[:-1]))}"
+            raise ValueError(f"{where} = {rows[i].tolist()} is no history of this law: w_max = state[0] must be "
+                             f"finite, >= 0 and <= the law's w_max = {self.w_max!r} (a NaN row: the contact's "
+                             "history was lost)")
+        unit = 1.0 if self.omega_c == 1.0 and self.P_c == 1.0 else 0.4 * self.P_c * self.omega_c
+        out *= unit
+        return float(out[0]) if x.ndim == 1 else out.reshape(x.shape[:-1])
+
+    def _full_limit(self):
+        """The largest w* a law of this material, model and loading law could serve."""
+        return interference_limit(self.eps_y, self.nu, extrapolate=self.extrapolate, unloading=self.unloading,
+                                  et_ratio=self.et_ratio, loading=self.loading)
+
     def _raise_too_fast(self, v):
         """The ValueError for a V1* whose maximum interference w_m* (JGM eq 29) passes the law's end."""
-        full = interference_limit(self.eps_y, self.nu, extrapolate=self.extrapolate, unloading=self.unloading)
-        if self.w_max < full:
+        if self.w_max < self._full_limit():
             v_top = math.sqrt(f_star_kernel(self.w_max, self.eps_y, self.nu, self.data.law, self.data.et_ratio))
             raise ValueError(f"v1_star = {v!r} gives w_m* beyond this law's w_max = {self.w_max!r}: it takes "
                              f"0 < v1_star <= {v_top:.10g} (V1*^2 = F(w_max), JGM eq 29); build the law with a "
                              "larger w_max (contact_law(..., w_max=...))")
-        raise_out_of_range(v, self.eps_y, self.nu, self.extrapolate, "v1_star", unloading=self.unloading)
+        raise_out_of_range(v, self.eps_y, self.nu, self.extrapolate, "v1_star", unloading=self.unloading,
+                           et_ratio=self.et_ratio, loading=self.loading)
 
     def impact(self, v1_star: float, *, steps_per_contact: int = 2000, locate_switch: bool = True) -> dict[str, Any]:
         """e of one impact at V1* integrated in time with this law (:func:`impact_in_time`).
 
-        For checking a time step: compare with :func:`fastrest.curve` ``.e(v1_star)``.
+        For checking a time step: compare with :func:`fastrest.curve` ``.e(v1_star)``, or
+        :func:`fastrest.direct.e_exact` with the law's ``et_ratio`` and ``loading``.
 
         Parameters
         ----------
@@ -710,6 +900,13 @@ def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float
         Default 1.0 (a normalised law); :meth:`fastrest.Impact.contact_law` passes the impact's.
     P_c : float, optional
         Force unit (N), finite and > 0: :meth:`ContactLaw.force` multiplies P* by it. Default 1.0.
+    et_ratio : float, optional
+        Tangent modulus over Young's modulus Et/E (-) of the yielding material, 0 <= et_ratio < 1;
+        default 0 (elastic-perfectly plastic). In Numba code from two bodies' properties:
+        :func:`fastrest.jit.yield_et_ratio`.
+    loading : {None, "jackson-green", "ghaednia"}, optional
+        The loading law (:mod:`fastrest.loading`); None (default) picks Jackson-Green for
+        et_ratio = 0 and Ghaednia et al. (2019) otherwise (equal bit for bit at 0).
 
     Returns
     -------
@@ -718,22 +915,26 @@ def contact_law(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float
     Raises
     ------
     TypeError
-        eps_y, nu, w_max, omega_c or P_c not a single real number; ``extrapolate`` not True or
-        False.
+        eps_y, nu, w_max, omega_c, P_c or et_ratio not a single real number; ``extrapolate`` not
+        True or False.
     ValueError
-        eps_y not finite and > 0; nu outside [0, 0.5); an unknown ``unloading``; w_max negative,
-        not finite, or past the model's end (w* = 425, a/R = 1 or the unloading model's end: the
+        eps_y not finite and > 0; nu outside [0, 0.5); an unknown ``unloading`` or ``loading``;
+        et_ratio outside [0, 1), or > 0 with ``loading="jackson-green"``; w_max negative, not
+        finite, or past the model's end (w* = 425, a/R = 1 or the unloading model's end: the
         message names it); omega_c or P_c not finite and > 0.
 
     Warns
     -----
     ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45; JCG or
+        Etsion unloading with et_ratio > 0 (fitted to elastic-perfectly plastic finite elements;
+        Brake's is the peers' pairing with hardening).
 
     Notes
     -----
-    JGM eqs (8)-(15) for loading, (32) with (35), (33)-(34) or Brake's rule for unloading, built on
-    :func:`fastrest.forward.forward_data` (docs/model.md section 10).
+    JGM eqs (8)-(15) for loading (Ghaednia et al. 2019 with hardening), (32) with (35), (33)-(34)
+    or Brake's rule for unloading, built on :func:`fastrest.forward.forward_data` (docs/model.md
+    section 10).
 
     Examples
     --------

@@ -7,6 +7,7 @@ interference w_i* = omega_i / omega_c, fixed by the position of the flat, and on
     F(w)        loading energy up to w, over U_c (JGM eqs 19, 25: F = 1 - (W_ep)*; equal to the
                 V1*^2 of a single sphere whose maximum interference is w);
                 F = w^2.5 for w <= 1.9 (Hertz), F = 1.9^2.5 + (5/2) int_1.9^w P*_JG dz above
+                (P* of the loading law: JG's, or Ghaednia et al.'s with hardening, ``et_ratio``)
     P*(w)       contact force over P_c (JG law, eqs 9, 14; exact formula, no table;
                 :func:`P_table_forward` and :func:`FP_table_forward` read it from a table
                 (~1e-14 relative), for Newton slopes)
@@ -56,7 +57,7 @@ from ._deprecation import alias, keyword_only, module_getattr
 from ._jit import jit
 from ._validation import (check_bool, check_count, check_eps_y, check_nu, real_scalar,
                           warn_if_outside_validated)
-from .contact import W_SWITCH, area_exponent
+from .loading.jackson_green import W_SWITCH, area_exponent
 from .critical import c_of_nu
 from .energy import F_SWITCH, law_integral
 from .loading import p_star_above, resolve as resolve_loading
@@ -185,7 +186,8 @@ def P_forward(data, w):
     Notes
     -----
     The Jackson-Green law: Hertz w^1.5 up to w = 1.9 (JGM eq 14), eq (9) above (as
-    :func:`fastrest.P_star`).
+    :func:`fastrest.P_star`); Ghaednia et al.'s (2019) above for a hardening ``data``
+    (``data.law``, ``data.et_ratio``).
 
     Examples
     --------
@@ -521,16 +523,18 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     Raises
     ------
     TypeError
-        eps_y, nu or w_max not a single real number; ``extrapolate`` not True or False.
+        eps_y, nu, w_max or et_ratio not a single real number; ``extrapolate`` not True or False.
     ValueError
         eps_y not finite and > 0; nu outside [0, 0.5); w_max negative or not finite; w_max past
         w* = 425 (without ``extrapolate``), past a/R = 1 or past the unloading model's end (the
-        message names the limit); an unknown ``unloading``; ``bits_per_octave`` outside [1, 10].
+        message names the limit); an unknown ``unloading`` or ``loading``; et_ratio outside
+        [0, 1), or > 0 with ``loading="jackson-green"``; ``bits_per_octave`` outside [1, 10].
 
     Warns
     -----
     ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45; JCG or
+        Etsion unloading with et_ratio > 0 (:func:`fastrest.unloading.warn_if_unfitted`).
 
     Notes
     -----

@@ -92,6 +92,24 @@ def kernel(laws, material, state, w, out):
     if i < out.size:
         out[i] = fn(laws, material[i], state[i], w[i])
 """
+_DISSIPATED = """
+def kernel(law, state, out):
+    i = cuda.grid(1)
+    if i < out.size:
+        out[i] = fn(law, state[i])
+"""
+_DISSIPATED_STACKED = """
+def kernel(laws, material, state, out):
+    i = cuda.grid(1)
+    if i < out.size:
+        out[i] = fn(laws, material[i], state[i])
+"""
+_ET_RATIO = """
+def kernel(p, out):
+    i = cuda.grid(1)
+    if i < out.size:
+        out[i] = fn(p[i, 0], p[i, 1], p[i, 2], p[i, 3], p[i, 4], p[i, 5], p[i, 6], p[i, 7])
+"""
 _SCALES = """
 def kernel(p, out):
     i = cuda.grid(1)
@@ -110,13 +128,16 @@ KERNELS = {
     "omega_m_table": (_DATA_3, "table"), "e_table": (_DATA_4, "table"), "loss_table": (_DATA_4, "table"),
     "contact_force": (_FORCE, "law"), "contact_force_stacked": (_FORCE_STACKED, "laws"),
     "hertz_contact_time": (_ONE, None), "critical_scales": (_SCALES, None),
+    "dissipated_energy": (_DISSIPATED, "law"), "dissipated_energy_stacked": (_DISSIPATED_STACKED, "laws"),
+    "yield_et_ratio": (_ET_RATIO, None),
 }
 
 
 def _data():
     import fastrest
     from fastrest.force_law import stack_laws
-    laws = [fastrest.contact_law(0.005, 0.33, w_max=30.0), fastrest.contact_law(0.002, 0.3, "etsion", w_max=30.0)]
+    laws = [fastrest.contact_law(0.005, 0.33, w_max=30.0), fastrest.contact_law(0.002, 0.3, "etsion", w_max=30.0),
+            fastrest.contact_law(0.004, 0.3, "brake", w_max=30.0, et_ratio=0.05)]  # strain hardening (issue 23)
     return {"curve": fastrest.curve(0.005, 0.33, v_max=50.0).data,
             "scene": fastrest.scene([(0.005, 0.33), (0.002, 0.3)], "brake", v_max=[50.0, 40.0]).data,
             "table": fastrest.load_table().data, "law": laws[0].data, "laws": stack_laws(laws)}
@@ -140,10 +161,33 @@ def _inputs(name, data):
         if template is _DATA_3:
             return (d, v, eps, nu), np.empty(N)
         return (d, v, eps, nu, (np.arange(N) % 4).astype(float)), np.empty(N)  # model 3: none (NaN)
+    if template in (_DISSIPATED, _DISSIPATED_STACKED):  # histories: loaded to w_max, unloaded; and bad rows
+        import fastrest
+        material = (np.arange(N) % 4).astype(float)  # material 3: none (NaN)
+        states = np.zeros((N, 4))
+        w_max = np.concatenate([[0.0, 0.5, 1.0, 1.5, 2.2, 1.9], np.geomspace(1.01, 29.0, N - 6)])
+        for i in range(N):
+            for w in (w_max[i], 0.5 * w_max[i]):  # loading, then unloading (sets w_res*, delta)
+                if template is _DISSIPATED_STACKED:
+                    fastrest.jit.contact_force_stacked(d, material[i], states[i], w)
+                else:
+                    fastrest.jit.contact_force(d, states[i], w)
+        states[-1] = np.nan
+        states[-2, 0] = -1.0
+        if template is _DISSIPATED:
+            return (d, states), np.empty(N)
+        return (d, material, states), np.empty(N)
+    if template is _ET_RATIO:
+        inf = np.inf  # steel on a rigid flat, on aluminium (which yields first) either way round, Et = E, invalid
+        rows = [[200e9, 0.3, 1e9, 2e9, inf, 0.0, inf, 0.0], [200e9, 0.3, 1e9, 2e9, 70e9, 0.33, 0.28e9, 0.7e9],
+                [70e9, 0.33, 0.28e9, 0.7e9, 200e9, 0.3, 1e9, 2e9], [200e9, 0.3, 1e9, 200e9, inf, 0.0, inf, 0.0],
+                [-1.0] * 8]
+        return (np.array([rows[k % 5] for k in range(N)], float) * (1.0 + 1e-3 * (np.arange(N) // 5))[:, None],), \
+            np.empty(N)
     if which == "law":
         return (d, np.zeros((N, 4)), np.zeros(N)), np.empty(N)
     if which == "laws":
-        return (d, (np.arange(N) % 2).astype(float), np.zeros((N, 4)), np.zeros(N)), np.empty(N)
+        return (d, (np.arange(N) % 3).astype(float), np.zeros((N, 4)), np.zeros(N)), np.empty(N)
     inf = np.inf  # critical_scales: a steel sphere on a rigid flat, on steel, and invalid rows
     rows = [[200e9, 0.33, 1.12e9, 0.01, 0.0327, inf, 0.0, inf, inf, inf],
             [200e9, 0.33, 1.12e9, 0.01, 0.0327, 70e9, 0.3, 2.8e8, 0.02, 0.1],
@@ -206,12 +250,15 @@ def _fused_pairs(modules):
     pb.getModulePassManager().run(mod, pb)
     text = str(mod)
     dbl = r"(?:double|<\d+ x double>)"
-    products = set(re.findall(rf"(%[\w.]+) = fmul (?:\w+ )*{dbl}", text))
     pairs = []
-    for line in text.splitlines():
-        m = re.match(rf"\s*%[\w.]+ = f(?:add|sub) (?:\w+ )*{dbl} ([^,]+), ([^,]+)", line)
-        if m and {m.group(1).strip(), m.group(2).strip()} & products:
-            pairs.append(line.strip())
+    # value names are local to a function: a device function LLVM did not inline (a plain @jit one)
+    # has its own %.207, which may be a product where the kernel's is not
+    for body in re.split(r"\ndefine ", text)[1:]:
+        products = set(re.findall(rf"(%[\w.]+) = fmul (?:\w+ )*{dbl}", body))
+        for line in body.splitlines():
+            m = re.match(rf"\s*%[\w.]+ = f(?:add|sub) (?:\w+ )*{dbl} ([^,]+), ([^,]+)", line)
+            if m and {m.group(1).strip(), m.group(2).strip()} & products:
+                pairs.append(line.strip())
     return pairs
 
 
@@ -264,6 +311,10 @@ def _simulate():
         _DATA_4: "for i in range(out.size): out[i] = fn(d, a[i], b[i], c[i], e[i])",
         _FORCE: "for i in range(out.size): out[i] = fn(law, state[i], w[i])",
         _FORCE_STACKED: "for i in range(out.size): out[i] = fn(laws, material[i], state[i], w[i])",
+        _DISSIPATED: "for i in range(out.size): out[i] = fn(law, state[i])",
+        _DISSIPATED_STACKED: "for i in range(out.size): out[i] = fn(laws, material[i], state[i])",
+        _ET_RATIO: "for i in range(out.size): out[i] = fn(p[i, 0], p[i, 1], p[i, 2], p[i, 3], p[i, 4], p[i, 5], "
+                   "p[i, 6], p[i, 7])",
         _SCALES: ("for i in range(out.shape[0]):\n"
                   "        s = fn(p[i, 0], p[i, 1], p[i, 2], p[i, 3], p[i, 4], p[i, 5], p[i, 6], p[i, 7],"
                   " p[i, 8], p[i, 9])\n"

@@ -240,9 +240,11 @@ def a_star(law, w, eps_y, nu, et_ratio):
     return a_star_above(law, w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y), et_ratio)
 
 
-@jit
+@jit(inline=True)
 def a_star_unchecked(law, w, eps_y, nu, et_ratio):
-    """A*(w) without the end check."""
+    """A*(w) without the end check. Inlined: Etsion's residual calls it inside contact_force, and a
+    call left in the caller's force loop (even in its rarely taken unloading branch) made the loop
+    ~5x slower (bench/FORCE_LAW.md)."""
     if w <= OMEGA_STAR_SWITCH:
         return w
     return a_star_above(law, w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y), et_ratio)

@@ -57,10 +57,10 @@ def _blend_terms(w, eps_y, nu, C, B, et_ratio):
     lw = math.log(w)
     sq_ap = math.sqrt(w * math.exp(B * (lw - LN_SWITCH)))  # as contact.p_star_jg computes A_p*
     k = 0.5 * math.pi * C * eps_y
-    r = math.sqrt((1.0 - nu * nu) / eps_y)  # sqrt(E/Sy)
+    r = math.sqrt((1.0 - mul_rn(nu, nu)) / eps_y)  # sqrt(E/Sy); mul_rn: see fastrest._jit
     # h^(1 - (delta - delta_c)/R) with (delta - delta_c)/R = (w - 1) k^2; 0 for h = 0
-    power = et_ratio ** (1.0 - (w - 1.0) * k * k)
-    ups = -2.0 * r * power / ((4.0 - 3.0 * math.exp(-2.0 * r * et_ratio)) * (1.0 - et_ratio))
+    power = et_ratio ** (1.0 - mul_rn((w - 1.0) * k, k))
+    ups = -2.0 * r * power / ((4.0 - mul_rn(3.0, math.exp(-2.0 * r * et_ratio))) * (1.0 - et_ratio))
     return sq_ap, math.sqrt(w) - sq_ap, -math.expm1(ups)
 
 
@@ -69,12 +69,12 @@ def p_star_above(w, eps_y, nu, C, B, et_ratio):
     """P*(w) for w >= 1.9 with C = C(nu) and B = 0.14 exp(23 eps_y) precomputed; a/R not checked."""
     sq_ap, d, t = _blend_terms(w, eps_y, nu, C, B, et_ratio)
     a_over_r = 0.5 * math.pi * C * eps_y * (sq_ap + mul_rn(t, d))
-    hg = 2.84 - 0.92 * (1.0 - math.cos(math.pi * a_over_r))
+    hg = 2.84 - mul_rn(0.92, 1.0 - math.cos(math.pi * a_over_r))
     lw = math.log(w)
-    hertz = w * math.sqrt(w)
+    hertz = mul_rn(w, math.sqrt(w))
     # the operations of contact.p_star_jg, in its order (bit-identical at et_ratio = 0)
-    p_plastic = (math.exp(-0.25 * math.exp(lw * (5.0 / 12.0))) * w * math.sqrt(w)
-                 + 4.0 * hg / C * (-math.expm1(-math.exp(lw * (5.0 / 9.0)) / 25.0)) * w)
+    p_plastic = (mul_rn(math.exp(-0.25 * math.exp(lw * (5.0 / 12.0))) * w, math.sqrt(w))
+                 + mul_rn(4.0 * hg / C * (-math.expm1(-math.exp(lw * (5.0 / 9.0)) / 25.0)), w))
     return p_plastic + mul_rn(hertz - p_plastic, -math.expm1(-3.3 * et_ratio))
 
 
@@ -84,7 +84,7 @@ def a_star_above(w, eps_y, nu, C, B, et_ratio):
     t = 0 returns JG's A_p* = w (w/1.9)^B exactly."""
     sq_ap, d, t = _blend_terms(w, eps_y, nu, C, B, et_ratio)
     td = mul_rn(t, d)
-    return w * (w / W_SWITCH) ** B + mul_rn(td, 2.0 * sq_ap + td)
+    return mul_rn(w, (w / W_SWITCH) ** B) + mul_rn(td, mul_rn(2.0, sq_ap) + td)
 
 
 @jit(inline=True)

@@ -50,7 +50,7 @@ def residual_ratio(wm1):
     """w_res*/w_m* of eq (35) from wm1 = w_m* - 1 (0 for w_m* <= 1), without cancellation near 1."""
     if wm1 <= 0.0:
         return 0.0
-    return -1.02 * math.expm1(-0.54 * math.log1p(wm1 / 6.9))
+    return mul_rn(-1.02, math.expm1(-0.54 * math.log1p(wm1 / 6.9)))  # 1.0 - r: not fused on CUDA either
 
 
 @jit(inline=True)
@@ -89,6 +89,6 @@ def restitution(f, wm, wm1, p, eps_y, nu, law, et_ratio):
         e2 = gap
     else:
         q = p * wm / f
-        loss = (1.0 - q) + q * r
+        loss = (1.0 - q) + mul_rn(q, r)
         e2 = q * gap
     return e2, loss, w_res, delta, elastic.residual_radius_ratio(p, delta)
