@@ -5,7 +5,7 @@
 1. ns per call of :func:`fastrest.jit.contact_force` in a user's ``@njit`` loop over contacts and
    time steps (paths of real impacts: Hertz, JG loading, unloading and gaps), against a plain
    Hertz force ``w^1.5`` evaluated in the same loop and run (interleaved rounds; the ratio is the
-   median of per-round ratios), and the exact JG law (:func:`fastrest.contact.p_star_kernel`);
+   median of per-round ratios), and the exact JG law (:func:`fastrest.loading.jackson_green.p_star_kernel`);
    also with strain hardening (Ghaednia et al.'s law, Et/E = 0.01, Brake unloading: its loading
    reads the same cell rows as JG's, so it should cost the same);
 2. the time of one time-stepped impact (:meth:`fastrest.ContactLaw.impact`) at the step count
@@ -33,7 +33,7 @@ import numpy as np
 import fastrest
 from fastrest import direct
 from fastrest import jit as frj
-from fastrest.contact import p_star_kernel
+from fastrest.loading.jackson_green import p_star_kernel
 
 from . import report
 from .timing import fmt_time, interleaved

@@ -18,7 +18,7 @@ import numpy as np
 
 from ._jit import jit
 from . import unloading as _unloading
-from .contact import W_SWITCH
+from .loading.jackson_green import W_SWITCH
 from .energy import V_SWITCH
 from .interpolation import MANTISSA_BITS, cell_edges, chebyshev_nodes, fit_cells, share_edges
 

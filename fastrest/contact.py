@@ -19,17 +19,13 @@ from __future__ import annotations
 
 from typing import Any
 from numpy.typing import ArrayLike, NDArray
-import math
 
 import numpy as np
 
 from ._jit import jit
 from ._validation import broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
 from . import loading as _loading
-# the JG kernels, for fastrest's own modules that compute with the JG law only (tables)
-from .loading.jackson_green import (W_SWITCH, LN_SWITCH, area_exponent, a_star_kernel,  # noqa: F401
-                                    radius_ratio_kernel, p_star_jg, p_star_kernel, p_star_unchecked,
-                                    omega_star_limit_kernel)
+from .loading.jackson_green import omega_star_limit_kernel
 
 
 __all__ = ["P_star", "A_star", "omega_star_limit"]

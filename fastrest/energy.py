@@ -20,7 +20,8 @@ import math
 import numpy as np
 
 from ._jit import jit
-from .contact import W_SWITCH, area_exponent, evaluate_law
+from .contact import evaluate_law
+from .loading.jackson_green import W_SWITCH, area_exponent
 from .critical import c_of_nu
 from .loading import JACKSON_GREEN, p_star_above, valid as law_valid
 

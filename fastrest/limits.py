@@ -23,7 +23,8 @@ import numpy as np
 from ._deprecation import alias, module_getattr
 from ._jit import jit
 from ._validation import OMEGA_M_STAR_MAX, check_bool, check_eps_y, check_nu, real_scalar
-from .contact import omega_star_limit_kernel, past_law_end
+from .contact import past_law_end
+from .loading.jackson_green import omega_star_limit_kernel
 from .energy import f_star_kernel
 from . import loading as _loading
 from . import unloading as _unloading

@@ -1,7 +1,7 @@
 """Tests of the forward map (fastrest.forward) and rough-surface impacts (fastrest.rough), issue 6.
 
 References used here:
-* fastrest.energy.f_star_kernel / contact.p_star_kernel / direct (the single-sphere quadrature and
+* fastrest.energy.f_star_kernel / jackson_green.p_star_kernel / direct (the single-sphere quadrature and
   solver) for the forward map;
 * rough_reference.reference_impact: per-summit f_star_kernel + restitution_kernel, scipy brentq for
   the approach (no forward tables, no rough kernels);
@@ -21,6 +21,7 @@ from scipy import integrate, optimize, special
 
 import fastrest
 from fastrest import ExtrapolationWarning, Material, contact, direct, energy, rough, unloading
+from fastrest.loading import jackson_green
 from fastrest import forward as fw
 from rough_reference import onset_reference, reference_impact
 
@@ -83,7 +84,7 @@ def test_forward_P_matches_p_star_kernel(eps_y, nu):
     data = fw.forward_data(eps_y, nu, w_max=400.0)
     w = np.concatenate([np.geomspace(1e-6, 400.0, 4000), [1.9, np.nextafter(1.9, 2.0)]])
     out = forward_array(data, w)
-    ref = np.array([contact.p_star_kernel(x, eps_y, nu) for x in w])
+    ref = np.array([jackson_green.p_star_kernel(x, eps_y, nu) for x in w])
     assert np.max(np.abs(out[1] / ref - 1.0)) <= 1e-14
     np.testing.assert_array_equal(out[1], out[5])
     assert np.max(np.abs(out[8] / ref - 1.0)) <= 5e-14  # tabulated P* (Newton slopes)

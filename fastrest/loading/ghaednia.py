@@ -55,7 +55,7 @@ def _blend_terms(w, eps_y, nu, C, B, et_ratio):
     """(sqrt(A_p*), sqrt(w) - sqrt(A_p*), t): JG's sqrt area, the Hertz one minus it, and
     t = 1 - e^Upsilon (exactly 0 at et_ratio = 0)."""
     lw = math.log(w)
-    sq_ap = math.sqrt(w * math.exp(B * (lw - LN_SWITCH)))  # as contact.p_star_jg computes A_p*
+    sq_ap = math.sqrt(w * math.exp(B * (lw - LN_SWITCH)))  # as jackson_green.p_star_jg computes A_p*
     k = 0.5 * math.pi * C * eps_y
     r = math.sqrt((1.0 - mul_rn(nu, nu)) / eps_y)  # sqrt(E/Sy); mul_rn: see fastrest._jit
     # h^(1 - (delta - delta_c)/R) with (delta - delta_c)/R = (w - 1) k^2; 0 for h = 0
@@ -72,7 +72,7 @@ def p_star_above(w, eps_y, nu, C, B, et_ratio):
     hg = 2.84 - mul_rn(0.92, 1.0 - math.cos(math.pi * a_over_r))
     lw = math.log(w)
     hertz = mul_rn(w, math.sqrt(w))
-    # the operations of contact.p_star_jg, in its order (bit-identical at et_ratio = 0)
+    # the operations of jackson_green.p_star_jg, in its order (bit-identical at et_ratio = 0)
     p_plastic = (mul_rn(math.exp(-0.25 * math.exp(lw * (5.0 / 12.0))) * w, math.sqrt(w))
                  + mul_rn(4.0 * hg / C * (-math.expm1(-math.exp(lw * (5.0 / 9.0)) / 25.0)), w))
     return p_plastic + mul_rn(hertz - p_plastic, -math.expm1(-3.3 * et_ratio))

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import OMEGA_M_STAR_MAX
-from ..contact import W_SWITCH
+from ..loading.jackson_green import W_SWITCH
 from ..energy import V_SWITCH
 from ..interpolation import two_level_cells
 from ..limits import speed_limit

@@ -19,7 +19,7 @@ from .._deprecation import keyword_only
 from .._jit import jit
 from .._threads import run_parallel
 from .._validation import OMEGA_M_STAR_MAX
-from ..contact import W_SWITCH, area_exponent, omega_star_limit_kernel
+from ..loading.jackson_green import W_SWITCH, area_exponent, omega_star_limit_kernel
 from ..critical import c_of_nu
 from ..energy import F_SWITCH, jg_integral, omega_m_sorted_kernel
 from ..interpolation import DEGREE, share_edges

@@ -24,7 +24,7 @@ from numba.extending import intrinsic
 
 from .._jit import fmul_rn, is_cuda, jit, mul_rn
 from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
-from ..contact import omega_star_limit_kernel
+from ..loading.jackson_green import omega_star_limit_kernel
 from ..critical import c_of_nu
 from ..energy import V_SWITCH
 from ..interpolation import cell_index, data_pointer, estrin5, pointer_cell_polynomial, two_level_index

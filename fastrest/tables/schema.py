@@ -10,7 +10,7 @@ import numpy as np
 from .. import unloading as _unloading
 from .._validation import EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX
 from .._version import __version__
-from ..contact import W_SWITCH, omega_star_limit_kernel
+from ..loading.jackson_green import W_SWITCH, omega_star_limit_kernel
 from ..energy import GL_ORDER, PANEL_WIDTH, V_SWITCH
 from ..interpolation import CHEB_U, DEGREE
 from ..limits import speed_limit

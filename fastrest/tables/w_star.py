@@ -20,7 +20,7 @@ import numpy as np
 
 from .._jit import jit
 from .._validation import EDGE_TOL, OMEGA_M_STAR_MAX
-from ..contact import W_SWITCH, omega_star_limit_kernel
+from ..loading.jackson_green import W_SWITCH, omega_star_limit_kernel
 from .grid import OMEGA_GRID_HERTZ
 from .kernel import EPS_Y_AR_BINDS, _first_node
 

@@ -16,7 +16,7 @@ w_res* (and so delta) from the maximum point; these functions take delta from it
 import math
 
 from .._jit import jit
-from ..contact import W_SWITCH
+from ..loading.jackson_green import W_SWITCH
 
 __all__ = ["force", "returned_energy", "residual_radius_ratio", "restitution", "area_residual",
            "area_restitution"]

@@ -16,7 +16,7 @@ exactly, so 1 - e^2 = w_res*/w_m*.
 import math
 
 from .._jit import jit, mul_rn
-from ..contact import W_SWITCH
+from ..loading.jackson_green import W_SWITCH
 from . import elastic
 
 #: The unit's interface, read by the registry (fastrest/unloading/__init__.py).
