@@ -17,7 +17,7 @@ from fastrest import models  # noqa: E402
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXPECTED = ["fig2_energy", "fig3_max_interference", "fig4_residual_interference",
             "fig5_e_vs_chang_ling", "fig6_unloading_models", "fig7_alumina_on_aluminium",
-            "fig8_alumina_on_steel"]
+            "fig8_alumina_on_steel", "hardening_e"]
 TABLE1_ARGS = ["--E", "200e9", "--nu", "0.33", "--Sy", "1.12e9", "--R", "0.01", "--rho", "7800"]
 
 
