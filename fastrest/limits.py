@@ -49,7 +49,7 @@ def w_upper_model(eps_y, nu, extrapolate, model, law, et_ratio):
     """:func:`w_upper`, and no further than unloading model ``model`` is defined (NaN if unknown)."""
     end = _unloading.omega_end(model)
     lim = w_upper(eps_y, nu, extrapolate, law, et_ratio)
-    if not (end > 0.0 and lim > 0.0):
+    if not (end > 0.0 and lim >= 0.0):  # lim: NaN for an invalid law, 0 where a/R = 1 at once
         return np.nan
     return min(lim, end)
 

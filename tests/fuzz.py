@@ -156,6 +156,17 @@ def _targets():
         lambda **k: rough.RoughSurface(steel, 1e-4, gw=k).impact(1e-3, 1e-3))
     add("RoughSurface.impact", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: surf.impact(**k))
     add("rough.sweep", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: rough.sweep([surf], on_error="raise", **k))  # errors, not per-surface records
+    # strain hardening (issue 23): Et of a Material, et_ratio of the normalised APIs (Brake: no warning)
+    add("Material(Et)", dict(E=2e11, nu=0.3, Sy=1e9, rho=7800.0, Et=1e9), lambda **k: fastrest.Material(**k))
+    add("P_star(et_ratio)", dict(w=2.0, eps_y=0.005, nu=0.3, et_ratio=0.01), lambda **k: fastrest.P_star(**k))
+    add("direct.e_exact(et_ratio)", dict(v3, et_ratio=0.01), lambda **k: direct.e_exact(unloading="brake", **k))
+    add("limit(et_ratio)", dict(eps_y=0.005, nu=0.33, et_ratio=0.01), lambda **k: fastrest.limit(**k))
+    add("curve(et_ratio)", dict(eps_y=0.005, nu=0.33, v_max=20.0, et_ratio=0.01),
+        lambda **k: fastrest.curve(unloading="brake", **k))
+    add("contact_law(et_ratio)", dict(eps_y=0.005, nu=0.33, w_max=50.0, et_ratio=0.01),
+        lambda **k: fastrest.contact_law(unloading="brake", **k))
+    add("rough.RoughSurface(et_ratio)", dict(material=steel, R_a=1e-4, heights=[0.0, 1e-8, 2e-8], et_ratio=0.01),
+        lambda **k: rough.RoughSurface(**k))
     return T
 
 
@@ -202,9 +213,9 @@ def _cli_cases():
 
 
 #: Parameters for which None is a valid value (an optional argument), or inf (a body that never yields).
-OPTIONAL = {("Material", "rho"), ("Impact", "mass"), ("curve", "v_max"), ("scene", "v_max"),
+OPTIONAL = {("Material", "rho"), ("rough.RoughSurface(et_ratio)", "et_ratio"), ("Material(Et)", "rho"), ("curve(et_ratio)", "v_max"), ("contact_law(et_ratio)", "w_max"), ("Impact", "mass"), ("curve", "v_max"), ("scene", "v_max"),
             ("contact_law", "w_max"), ("ContactLaw.new_state", "n"), ("rough.gaussian_summits", "seed")}
-INF_OK = {("Material", "Sy")}
+INF_OK = {("Material", "Sy"), ("Material(Et)", "Sy")}
 #: (target, parameter, label) valid although the label is never valid for a number.
 VALID = {("rough.gaussian_summits", "seed", "int beyond float")}  # any integer >= 0 seeds NumPy
 #: Flags: only True/False (and NumPy booleans) are valid, numbers are not.

@@ -15,13 +15,14 @@ import math
 
 import mpmath
 import numpy as np
+from scipy import integrate, optimize
 
 import fastrest
 from fastrest import loading as _loading
 from fastrest.energy import f_star_kernel
 from fastrest.unloading import restitution_kernel, unloading_code
 
-__all__ = ["reference_impact", "onset_reference"]
+__all__ = ["reference_impact", "onset_reference", "gw_quad_reference"]
 
 _ctx = mpmath.MPContext()
 _ctx.dps = 40
@@ -106,3 +107,34 @@ def onset_reference(h, V1, M, U_c):
 
     loss = c.fsum(ratio(delta + x) * (1 + delta + x) ** c.mpf(2.5) for x in hs if 1 + delta + x > 0) / E
     return float(loss), float(delta)
+
+
+def gw_quad_reference(s, V1, M, model="jcg"):
+    """zs_d and e of a Gaussian Greenwood-Williamson surface by scipy quad + brentq, with the
+    per-summit loading energy of the surface's law (energy.f_star_kernel) and its unloading."""
+    eps, nu, r, h = s.eps_y, s.nu, s.sigma / s.omega_c, s.et_ratio
+    law = s.law.code
+    N = s.n_summits
+    code = unloading_code(model)
+    E = M * V1**2 / (2 * s.U_c)
+
+    def phi(x):
+        return math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
+
+    def F(w):
+        return f_star_kernel(w, eps, nu, law, h) if w > 0 else 0.0
+
+    def L(w):
+        if w <= 1.0:
+            return 0.0
+        f = f_star_kernel(w, eps, nu, law, h)
+        return restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, code, law, h)[1] * f
+
+    def expect(sd, fun):
+        top = max(sd, 0.0) + 12.0
+        pts = [p for p in (sd + 1.0 / r, sd + 1.9 / r) if p < top]
+        return integrate.quad(lambda x: fun((x - sd) * r) * phi(x), sd, top, points=pts or None,
+                              limit=500, epsabs=0.0, epsrel=1e-13)[0]
+
+    sd = optimize.brentq(lambda x: N * expect(x, F) - E, -30.0, 12.0, xtol=1e-14, rtol=1e-15)
+    return sd, math.sqrt(1.0 - N * expect(sd, L) / E)

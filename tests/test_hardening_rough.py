@@ -17,12 +17,11 @@ import warnings
 
 import numpy as np
 import pytest
-from scipy import integrate, optimize
 
 import fastrest
-from fastrest import Material, direct, energy, loading, rough, unloading
+from fastrest import Material, direct, loading, rough
 from fastrest._validation import ValidityWarning
-from rough_reference import reference_impact
+from rough_reference import gw_quad_reference, reference_impact
 
 STEEL = Material(E=200e9, nu=0.3, Sy=1e9)
 R_A = 1e-4
@@ -217,37 +216,6 @@ def test_past_the_model_range_with_hardening():
 
 
 # --- statistical surfaces against quadrature ------------------------------------------------------
-
-def gw_quad_reference(s, V1, M, model):
-    """zs_d and e of a Gaussian Greenwood-Williamson surface by scipy quad + brentq, with the
-    per-summit loading energy of the surface's law (energy.f_star_kernel) and its unloading."""
-    eps, nu, r, h = s.eps_y, s.nu, s.sigma / s.omega_c, s.et_ratio
-    law = s.law.code
-    N = s.n_summits
-    code = unloading.get(model).code
-    E = M * V1**2 / (2 * s.U_c)
-
-    def phi(x):
-        return math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
-
-    def F(w):
-        return energy.f_star_kernel(w, eps, nu, law, h) if w > 0 else 0.0
-
-    def L(w):
-        if w <= 1.0:
-            return 0.0
-        f = energy.f_star_kernel(w, eps, nu, law, h)
-        return unloading.restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, code, law, h)[1] * f
-
-    def expect(sd, fun):
-        top = max(sd, 0.0) + 12.0
-        pts = [p for p in (sd + 1.0 / r, sd + 1.9 / r) if p < top]
-        return integrate.quad(lambda x: fun((x - sd) * r) * phi(x), sd, top, points=pts or None,
-                              limit=500, epsabs=0.0, epsrel=1e-13)[0]
-
-    sd = optimize.brentq(lambda x: N * expect(x, F) - E, -30.0, 12.0, xtol=1e-14, rtol=1e-15)
-    return sd, math.sqrt(1.0 - N * expect(sd, L) / E)
-
 
 @pytest.mark.parametrize("psi, V1, h, model", [(1.0, 0.1, 0.01, "brake"), (2.0, 0.1, 0.1, "brake"),
                                                (4.0, 1.0, 0.3, "brake"), (4.0, 0.01, 0.1, "jcg")])

@@ -17,13 +17,13 @@ import warnings
 import numba as nb
 import numpy as np
 import pytest
-from scipy import integrate, optimize, special
+from scipy import special
 
 import fastrest
-from fastrest import ExtrapolationWarning, Material, contact, direct, energy, rough, unloading
+from fastrest import ExtrapolationWarning, Material, contact, direct, energy, rough
 from fastrest.loading import jackson_green
 from fastrest import forward as fw
-from rough_reference import onset_reference, reference_impact
+from rough_reference import gw_quad_reference, onset_reference, reference_impact
 
 STEEL = Material(E=200e9, nu=0.3, Sy=1e9)
 R_A = 1e-4
@@ -338,34 +338,6 @@ def test_plasticity_index():
 # =================================================================================================
 # statistical surfaces
 # =================================================================================================
-
-def gw_quad_reference(s, V1, M, model="jcg"):
-    """Greenwood-Williamson by scipy quad (f_star_kernel integrand) and brentq, Gaussian heights."""
-    eps, nu, r = s.eps_y, s.nu, s.sigma / s.omega_c
-    N = s.n_summits
-    code = unloading.get(model).code
-    E = M * V1**2 / (2 * s.U_c)
-    phi = lambda x: math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
-
-    def F(w):
-        return energy.f_star_kernel(w, eps, nu, 0, 0.0) if w > 0 else 0.0
-
-    def L(w):
-        if w <= 1.0:
-            return 0.0
-        f = energy.f_star_kernel(w, eps, nu, 0, 0.0)
-        return unloading.restitution_kernel(math.sqrt(f), w, w - 1.0, eps, nu, code, 0, 0.0)[1] * f
-
-    def expect(sd, fun):
-        top = max(sd, 0.0) + 12.0
-        pts = [p for p in (sd + 1.0 / r, sd + 1.9 / r) if p < top]
-        return integrate.quad(lambda x: fun((x - sd) * r) * phi(x), sd, top, points=pts or None,
-                              limit=500, epsabs=0.0, epsrel=1e-13)[0]
-
-    sd = optimize.brentq(lambda x: N * expect(x, F) - E, -30.0, 12.0, xtol=1e-14, rtol=1e-15)
-    loss = N * expect(sd, L) / E
-    return sd, math.sqrt(1.0 - loss)
-
 
 @pytest.mark.parametrize("model", UNLOADINGS)
 @pytest.mark.parametrize("psi, V1", [(0.3, 0.1), (1.0, 0.01), (1.0, 1.0), (2.0, 0.1), (4.0, 0.01),
