@@ -265,8 +265,10 @@ def _cmd_warmup(args):
                       .impact([1e-4, 2e-4, 5e-4, 1e-3], 1e-3),
                       rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
                       .impact(1e-3, 1e-3)))
-        step("contact law (force, impact)", lambda: (fastrest.contact_law(0.005, 0.33).force([0.5, 2.0, 1.0]),
-                                                     fastrest.contact_law(0.005, 0.33).impact(5.0, steps_per_contact=200)))
+        law = fastrest.contact_law(0.005, 0.33)
+        step("contact law (force, impact, energy)", lambda: (law.force([0.5, 2.0, 1.0]),
+                                                             law.impact(5.0, steps_per_contact=200),
+                                                             law.dissipated_energy(law.new_state())))
         step("comparison models", lambda: [fastrest.models.MODELS[m](5.0, 0.005, 0.33) for m in fastrest.models.MODELS])
     print(f"fastrest kernels ready in {time.perf_counter() - t0:.2f} s")
     return 0
