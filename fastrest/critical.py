@@ -527,7 +527,8 @@ def yield_et_ratio(E1, nu1, Sy1, Et1, E2, nu2, Sy2, Et2):
     -------
     float
         et_ratio = Et/E (-) of the body with the smaller C(nu) Sy, the one that supplies nu, Sy
-        and C to :func:`critical_scales` (the same rule, the same compiled comparison): pass it
+        and C to :func:`critical_scales` (the same rule, the same compiled comparison); where
+        both yield at once (equal C(nu) Sy), the smaller of the two, whatever the order: pass it
         with that contact's eps_y and nu to the law (:func:`fastrest.contact_law` ``et_ratio=``).
         NaN if neither body can yield, an input is not positive where it must be (E, Sy; nu
         outside [0, 0.5); E1 not finite), or the yielding body's Et is not in [0, E) (a jit
@@ -568,4 +569,9 @@ def yield_et_ratio(E1, nu1, Sy1, Et1, E2, nu2, Sy2, Et2):
     h = Et / E
     if not (Et >= 0.0 and Et < E and h >= 0.0 and h < 1.0):  # also NaN
         return math.nan
+    if first and _yields_first(nu2, Sy2, nu1, Sy1):  # both yield at once: the one hardening less
+        h2 = Et2 / E2
+        if not (Et2 >= 0.0 and Et2 < E2 and h2 >= 0.0 and h2 < 1.0):
+            return math.nan
+        h = min(h, h2)
     return h

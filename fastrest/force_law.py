@@ -296,6 +296,8 @@ def dissipated_energy(law, state):
     >>> round(dissipated_energy(law.data, state), 6)  # (1 - e^2) V1*^2 = 0.313202 * 100
     31.320232
     """
+    if not state[1] == state[1]:  # a row whose P*(w_max) is NaN lost its history
+        return np.nan
     return loss_forward(law, state[0])
 
 

@@ -217,7 +217,10 @@ class Impact:
         if math.isinf(yielding.Sy):
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
-        self._law = resolve_loading(loading, yielding.et_ratio, name="Et/E of the yielding body")
+        # both yield at once (equal C(nu) Sy): the body that hardens less, whatever the order
+        tie = other is not None and sphere.yield_product == other.yield_product
+        self._et_ratio = min(sphere.et_ratio, other.et_ratio) if tie else yielding.et_ratio
+        self._law = resolve_loading(loading, self._et_ratio, name="Et/E of the yielding body")
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
         self._check_scales(sphere, R1, other, R2, names)
         self._warn_validity()
@@ -289,8 +292,10 @@ class Impact:
 
     @property
     def et_ratio(self) -> float:
-        """Et/E of the material that yields first (-), 0 for elastic-perfectly plastic."""
-        return self.yielding.et_ratio
+        """Et/E of the material that yields first (-), 0 for elastic-perfectly plastic; where both
+        yield at once (equal C(nu) Sy), the smaller of the two (the order of the bodies does not
+        matter)."""
+        return getattr(self, "_et_ratio", self.yielding.et_ratio)  # pickles from before Et
 
     @property
     def loading(self) -> str:

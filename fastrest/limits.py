@@ -194,6 +194,7 @@ def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None
     h = float(np.ravel(et_ratio)[0])
     lead = f"{name} = {v!r}" if V_c is None else f"{name} = {v!r} m/s"
     law = dict(et_ratio=h, loading=loading)
+    hard = f", et_ratio = {h!r}" if h > 0.0 else ""  # hardening moves the speed limits
 
     def at(v_star):
         return f"V1* = {v_star:.10g}" if V_c is None else f"V1 = {v_star * V_c:.10g} m/s (V1* = {v_star:.6g})"
@@ -212,7 +213,7 @@ def raise_out_of_range(v, eps_y, nu, extrapolate, name="v1_star", unloading=None
         raise _past_law(lead, e, n, w_ar, f", i.e. {at(speed_limit(e, n, extrapolate=True, **law))}")
     raise ValueError(
         f"{lead} gives w_m* > {OMEGA_M_STAR_MAX:g}, the model's limit (JGM section 3.3); "
-        f"for eps_y = {e!r}, nu = {n!r} that limit is {at(speed_limit(e, n, **law))}. {hint}")
+        f"for eps_y = {e!r}, nu = {n!r}{hard} that limit is {at(speed_limit(e, n, **law))}. {hint}")
 
 
 def interference_limit_message(w, eps_y, nu, extrapolate, unloading=None):

@@ -57,7 +57,7 @@ def _cmd_c(args):
         names.update(_PAIR_OPTIONS)  # a pair's errors name its options (--E, --nu, ...)
     with cli_names(names):
         if args.materials is not None and (physical or args.V_max is not None):
-            raise ValueError("give --materials (normalised EPS_Y:NU) or the pairs' physical properties "
+            raise ValueError("give --materials (normalised EPS_Y:NU[:ET_RATIO]) or the pairs' physical properties "
                              "(--E --nu --Sy --R --rho, or --pairs), not both")
         critical = pair_names = None
         if args.materials is not None:

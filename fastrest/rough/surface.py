@@ -12,7 +12,7 @@ import sys
 
 import numpy as np
 
-from .._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool,
+from .._validation import (EDGE_TOL, OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool,
                            check_finite_positive, real_scalar, warn, warn_if_outside_validated)
 from ..energy import f_star_kernel
 from ..limits import interference_limit_message
@@ -131,10 +131,10 @@ class RoughSurface:
         own = float(getattr(material, "et_ratio", 0.0))  # Et/E of a Material(..., Et=...)
         if et_ratio is None:
             et_ratio = own
-        elif own > 0.0 and float(real_scalar(et_ratio, "et_ratio")) != own:
+        elif own > 0.0 and abs(float(real_scalar(et_ratio, "et_ratio")) - own) > EDGE_TOL * own:
             raise ValueError(f"et_ratio = {et_ratio!r} contradicts the material's Et/E = {own!r}: give the "
                              "tangent modulus once (Material(..., Et=...) or et_ratio=)")
-        self.et_ratio = float(real_scalar(et_ratio, "et_ratio"))
+        self.et_ratio = own if own > 0.0 else float(real_scalar(et_ratio, "et_ratio"))
         self.law = resolve_loading(loading, self.et_ratio)  # validates et_ratio and loading
         self.loading = None if loading is None else self.law.name
         self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
