@@ -218,8 +218,10 @@ class Impact:
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
         # both yield at once (equal C(nu) Sy): the body that hardens less, whatever the order
-        tie = other is not None and sphere.yield_product == other.yield_product
-        self._et_ratio = min(sphere.et_ratio, other.et_ratio) if tie else yielding.et_ratio
+        if other is not None and sphere.yield_product == other.yield_product:
+            self._et_ratio = min(sphere.et_ratio, other.et_ratio)
+        else:
+            self._et_ratio = yielding.et_ratio
         self._law = resolve_loading(loading, self._et_ratio, name="Et/E of the yielding body")
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
         self._check_scales(sphere, R1, other, R2, names)
