@@ -28,7 +28,7 @@ from ._deprecation import alias, warn_deprecated
 from ._validation import (EDGE_TOL, EPS_Y_VALIDATED, NU_VALIDATED, ValidityWarning, as_float_array,
                           check_finite_positive, check_velocity, real_scalar, warn)
 from .critical import (critical_area, critical_energy, critical_force, critical_interference,
-                       critical_velocity, effective_mass, effective_modulus, effective_radius)
+                       critical_velocity, effective_mass, effective_modulus, effective_radius, yield_et_ratio)
 from .limits import raise_out_of_range, speed_limit
 from .loading import LAWS, LoadingLaw, resolve as resolve_loading
 from .materials import UNITS_HINT, Material, implausible, poisson_factor
@@ -217,11 +217,9 @@ class Impact:
         if math.isinf(yielding.Sy):
             raise ValueError("neither body can yield (Sy = inf for both): the impact is elastic, e = 1")
         self.yielding = yielding
-        # both yield at once (equal C(nu) Sy): the body that hardens less, whatever the order
-        if other is not None and sphere.yield_product == other.yield_product:
-            self._et_ratio = min(sphere.et_ratio, other.et_ratio)
-        else:
-            self._et_ratio = yielding.et_ratio
+        # Et/E by the jit rule (the yielding body's; on a tie the smaller, whatever the order)
+        flat = (math.inf, 0.0, math.inf, 0.0) if other is None else (other.E, other.nu, other.Sy, other.Et)
+        self._et_ratio = float(yield_et_ratio(sphere.E, sphere.nu, sphere.Sy, sphere.Et, *flat))
         self._law = resolve_loading(loading, self._et_ratio, name="Et/E of the yielding body")
         self.mass = _sphere_mass(sphere, R1, mass, "mass")
         self._check_scales(sphere, R1, other, R2, names)

@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from .._jit import jit, mul_rn
+from . import jackson_green
 from .jackson_green import LN_SWITCH, omega_star_limit_kernel
 
 #: The unit's interface, read by the registry (fastrest/loading/__init__.py).
@@ -84,7 +85,7 @@ def a_star_above(w, eps_y, nu, C, B, et_ratio):
     t = 0 returns JG's A_p* = w (w/1.9)^B exactly."""
     sq_ap, d, t = _blend_terms(w, eps_y, nu, C, B, et_ratio)
     td = mul_rn(t, d)
-    return mul_rn(w, (w / W_SWITCH) ** B) + mul_rn(td, mul_rn(2.0, sq_ap) + td)
+    return jackson_green.a_star_above(w, eps_y, nu, C, B, 0.0) + mul_rn(td, mul_rn(2.0, sq_ap) + td)
 
 
 @jit(inline=True)

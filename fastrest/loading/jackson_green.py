@@ -37,7 +37,7 @@ def a_star_kernel(w, eps_y, nu):
     """A*(w): Hertz A* = w for w <= 1.9, JG eq (8) above."""
     if w <= W_SWITCH:
         return w
-    return w * (w / W_SWITCH) ** area_exponent(eps_y)
+    return a_star_above(w, eps_y, nu, 0.0, area_exponent(eps_y), 0.0)
 
 
 @jit
@@ -72,14 +72,6 @@ def p_star_kernel(w, eps_y, nu):
         return w**1.5
     if not radius_ratio_kernel(w, eps_y, nu) < 1.0:
         return np.nan
-    return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
-
-
-@jit
-def p_star_unchecked(w, eps_y, nu):
-    """P*(w) without the a/R < 1 check (for callers that bound w themselves)."""
-    if w <= W_SWITCH:
-        return w**1.5
     return p_star_jg(w, eps_y, nu, c_of_nu(nu), area_exponent(eps_y))
 
 
@@ -123,8 +115,8 @@ def p_star_above(w, eps_y, nu, C, B, et_ratio):
 
 @jit(inline=True)
 def a_star_above(w, eps_y, nu, C, B, et_ratio):
-    """A*(w) = w (w/1.9)^B for w >= 1.9 (eq 8)."""
-    return w * (w / W_SWITCH) ** B
+    """A*(w) = w (w/1.9)^B for w >= 1.9 (eq 8); the one place of the formula."""
+    return mul_rn(w, (w / W_SWITCH) ** B)  # mul_rn: the hardening law adds to it (fastrest._jit)
 
 
 @jit(inline=True)
