@@ -360,7 +360,7 @@ def _dtype_case(dtype, kinds):
 @pytest.mark.parametrize("dtype", [np.int64, np.float32], ids=["int64", "float32"])
 def test_contact_force_and_critical_scales_take_integers_and_float32(dtype):
     """contact_force and critical_scales did not compile for an integer or float32 (TypingError
-    in float_bits). The curve, scene and table functions: tests/test_issue13_inputs.py (default run)
+    in float_bits). The curve, scene and table functions: tests/test_input_usability.py (default run)
     and the full matrix below."""
     _dtype_case(dtype, ("force",))
 

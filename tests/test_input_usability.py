@@ -1,4 +1,5 @@
-"""Regression tests of issue 13's input and usability items (the fuzz suite covers the rest)."""
+"""Input handling and usability: flags, non-numbers, extreme values, CLI user errors, jit input types,
+table edges (the fuzz suite covers the rest)."""
 import json
 import math
 import pickle

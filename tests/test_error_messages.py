@@ -1,4 +1,4 @@
-"""Issue 20, item 5: errors of the right type that name the Python parameter (and its range).
+"""Errors of the right type that name the Python parameter (and its range).
 
 Each case below failed on the code before the fix: the wrong exception type, a message that did
 not name the parameter, an internal exception passed on as text, or no error at all.
