@@ -1,4 +1,4 @@
-"""Fuzz suite over fastrest's public API and CLI (issue 13): every public function, class and CLI
+"""Fuzz suite over fastrest's public API and CLI: every public function, class and CLI
 command called with hostile and extreme values for each parameter in turn (the others valid).
 
 Each call is classified:
@@ -156,7 +156,7 @@ def _targets():
         lambda **k: rough.RoughSurface(steel, 1e-4, gw=k).impact(1e-3, 1e-3))
     add("RoughSurface.impact", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: surf.impact(**k))
     add("rough.sweep", dict(V1=1e-3, M=1e-3, extrapolate=False), lambda **k: rough.sweep([surf], on_error="raise", **k))  # errors, not per-surface records
-    # strain hardening (issue 23): Et of a Material, et_ratio of the normalised APIs (Brake: no warning)
+    # strain hardening: Et of a Material, et_ratio of the normalised APIs (Brake: no warning)
     add("Material(Et)", dict(E=2e11, nu=0.3, Sy=1e9, rho=7800.0, Et=1e9), lambda **k: fastrest.Material(**k))
     add("P_star(et_ratio)", dict(w=2.0, eps_y=0.005, nu=0.3, et_ratio=0.01), lambda **k: fastrest.P_star(**k))
     add("direct.e_exact(et_ratio)", dict(v3, et_ratio=0.01), lambda **k: direct.e_exact(unloading="brake", **k))

@@ -1,7 +1,7 @@
 """Slow, high-precision reference of Ghaednia et al. (2019) strain-hardening loading, for the tests.
 
-Independent of ``fastrest`` (nothing imported from it): the normalised law written from the
-issue's statement of Ghaednia, Brake, Berryhill & Jackson (2019) (the form tmdsimpy's
+Independent of ``fastrest`` (nothing imported from it): the normalised law written from
+Ghaednia, Brake, Berryhill & Jackson (2019) (the form tmdsimpy's
 ``_normal_pl_asperity_loading`` implements), on top of :mod:`reference`'s 40-digit Jackson-Green
 machinery (its loading energy F, by Gauss-Legendre checked segment by segment against mpmath's
 adaptive tanh-sinh quadrature, and its safeguarded Newton root find for w_m), which only needs

@@ -1,6 +1,6 @@
-"""Issue 12: every fast number within its stated error, or refused.
+"""Every fast number within its stated error, or refused.
 
-Each case the audit found is reproduced here, against the direct solver (within ~1e-15 of the
+Each known worst case of an adversarial search is reproduced here, against the direct solver (within ~1e-15 of the
 40-digit reference, test_direct.py). The dense sweep is bench/adversarial.py (bench/ADVERSARIAL.md).
 """
 import math
@@ -47,7 +47,7 @@ def test_table_records_its_adversarial_error():
 
 
 def test_stored_error_is_the_worst_found_not_a_samples_maximum():
-    """Issue 20, item 6: a local search between nu nodes on the eps_y = 0.01 edge in the last cell
+    """A local search between nu nodes on the eps_y = 0.01 edge in the last cell
     found e off by 8.5e-10 (Etsion; Brake 8.4e-10, JCG 5.7e-10) where the file stated 5.1e-10 (the
     build's sample missed the peak by 1.66x). The stated error must cover it."""
     t = fastrest.load_table()

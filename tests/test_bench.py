@@ -1,4 +1,4 @@
-"""The benchmark suite (bench/, issue 5) runs and writes parseable results. No timing thresholds."""
+"""The benchmark suite (bench/) runs and writes parseable results. No timing thresholds."""
 import json
 import re
 import subprocess

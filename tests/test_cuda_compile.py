@@ -1,4 +1,4 @@
-"""Every ``fastrest.jit`` function inside a user's ``numba.cuda.jit`` kernel, without a GPU (issue 22).
+"""Every ``fastrest.jit`` function inside a user's ``numba.cuda.jit`` kernel, without a GPU.
 
 * ``test_compiles_to_ptx``: one kernel per function (float64 arrays in and out; the data as an
   argument) compiles to PTX for sm_90 from the same Python source as on the CPU, and the LLVM IR
@@ -137,7 +137,7 @@ def _data():
     import fastrest
     from fastrest.force_law import stack_laws
     laws = [fastrest.contact_law(0.005, 0.33, w_max=30.0), fastrest.contact_law(0.002, 0.3, "etsion", w_max=30.0),
-            fastrest.contact_law(0.004, 0.3, "brake", w_max=30.0, et_ratio=0.05)]  # strain hardening (issue 23)
+            fastrest.contact_law(0.004, 0.3, "brake", w_max=30.0, et_ratio=0.05)]  # strain hardening
     return {"curve": fastrest.curve(0.005, 0.33, v_max=50.0).data,
             "scene": fastrest.scene([(0.005, 0.33), (0.002, 0.3)], "brake", v_max=[50.0, 40.0]).data,
             "table": fastrest.load_table().data, "law": laws[0].data, "laws": stack_laws(laws)}

@@ -440,7 +440,7 @@ def test_hertz_range_cells_reproduce_closed_form_to_a_few_ulp():
 
 
 def test_options_are_keyword_only():
-    """v_max and extrapolate after the model choice only by name (issue 15)."""
+    """v_max and extrapolate after the model choice only by name."""
     with pytest.raises(TypeError):
         fastrest.curve(0.005, 0.33, "jcg", 10.0)
     with pytest.raises(TypeError):

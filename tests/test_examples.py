@@ -1,5 +1,5 @@
 """The scripts of docs/examples write their figures to the current directory (or --out), never into
-the repository (issue 21 item 7). The numbers of the examples are tested where their models are:
+the repository. The numbers of the examples are tested where their models are:
 dem_wall.py in tests/test_force_law.py, rough_surface.py (slow) in tests/test_rough.py."""
 import runpy
 import subprocess

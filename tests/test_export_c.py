@@ -178,7 +178,7 @@ def test_c_header_unwritable(tmp_path, capsys):
     assert "--out" in err and str(out) in err
 
 
-# --- a header from physical properties (issue 21 item 7) ------------------------------------------
+# --- a header from physical properties ------------------------------------------------------------
 
 PHYSICAL_PROGRAM = r"""
 #include <stdio.h>
@@ -282,7 +282,7 @@ def test_c_header_from_options_records_critical_values(tmp_path, capsys):
     assert "#define FASTREST_HAS_CRITICAL 0" in norm and "fastrest_v1_star" not in norm
 
 
-# --- the header as CUDA (issue 22 items 3, 5) -----------------------------------------------------
+# --- the header as CUDA ---------------------------------------------------------------------------
 
 CUDA_PROGRAM = r"""
 #include <stdio.h>

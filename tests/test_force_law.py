@@ -245,7 +245,7 @@ def _many_stacked(laws, material, states, w, out):
 
 
 def test_several_materials_in_one_parallel_loop_match_each_law():
-    """Issue 21: a tuple of ContactLaw.data cannot be indexed by material inside prange; the stacked
+    """A tuple of ContactLaw.data cannot be indexed by material inside prange; the stacked
     laws can, and give each law's forces bit for bit (three materials, three unloading models, a
     law with a smaller w_max, the last material's rows placed after the others')."""
     from fastrest.force_law import stack_laws
@@ -341,7 +341,7 @@ def test_dem_example_reproduces_isolated_impacts():
     assert np.max(np.abs(e_dem / e_curve - 1)) < 1e-5
 
 
-# --- issue 20: every speed the other APIs accept integrates --------------------------------------
+# --- every speed the other APIs accept integrates ------------------------------------------------
 
 def test_limit_speed_integrates_with_any_step_count():
     """direct.v1_star_limit is accepted by the direct solver and the curves: the time-stepped impact

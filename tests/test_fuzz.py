@@ -1,4 +1,4 @@
-"""The fuzz suite (tests/fuzz.py; issues 13 and 20): 0 unclear, 0 silent, 0 crash.
+"""The fuzz suite (tests/fuzz.py): 0 unclear, 0 silent, 0 crash.
 
 An error is clear when it is a TypeError (not a number) or ValueError (a number out of range) that
 names the Python parameter, no CLI ``--option``, and passes on no internal exception. The default

@@ -1,4 +1,4 @@
-"""Issue 23 on the contact-law / DEM / jit path: strain hardening (Ghaednia et al. 2019) in the
+"""The contact-law / DEM / jit path with strain hardening (Ghaednia et al. 2019) in the
 time-domain contact law, the energy a contact dissipates, Et/E of a contact from two bodies, the
 force across w = 0, and the published tmdsimpy data with hardening.
 

@@ -1,4 +1,4 @@
-"""Strain hardening (issue 23) in the SI / product layer: Material(Et=...), Impact, curves, scenes and
+"""Strain hardening in the SI / product layer: Material(Et=...), Impact, curves, scenes and
 the exports (velocity tables, C header).
 
 References: the direct solver with ``et_ratio`` (fastrest.direct, the Ghaednia et al. 2019 loading

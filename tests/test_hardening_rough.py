@@ -1,4 +1,4 @@
-"""Rough surfaces of a strain-hardening material (issue 23): every summit follows Ghaednia et al.
+"""Rough surfaces of a strain-hardening material: every summit follows Ghaednia et al.
 (2019) (tangent modulus ratio ``et_ratio`` = Et/E) instead of Jackson-Green.
 
 References (independent of the rough-surface code and its forward tables):

@@ -298,7 +298,7 @@ def test_jcg_unloading_ends_where_residual_reaches_maximum_interference():
     with pytest.warns(fastrest.ExtrapolationWarning):
         assert 0.0 < direct.e_exact(lim_ar, eps, nu, "etsion", extrapolate=True) < 1.0
         c = fastrest.curve(eps, nu, extrapolate=True)
-        # curves stop short of the end, where e falls like a square root (issue 12, item 5)
+        # curves stop short of the end, where e falls like a square root
         assert c.e(c.v_max) > 0.0 and c.omega_m(c.v_max) == pytest.approx(0.6 * JCG_OMEGA_END, rel=1e-9)
 
 

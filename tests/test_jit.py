@@ -228,7 +228,7 @@ def test_table_loop_takes_no_references_per_point():
     assert 0 < bodies[0].count("call void @NRT_incref(") <= n_arrays
 
 
-# --- issue 20: the NaN contract and scalar types of every function of fastrest.jit.__all__ ----------
+# --- the NaN contract and scalar types of every function of fastrest.jit.__all__ -------------------
 
 _INF = math.inf
 

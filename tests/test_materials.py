@@ -274,7 +274,7 @@ def test_poisson_factor_bad_nu(nu):
 
 
 # --------------------------------------------------------------------------------------------
-# Issue 21 item 7: unit mistakes are named, and the validity warning comes when the Impact is built.
+# Unit mistakes are named, and the validity warning comes when the Impact is built.
 
 @pytest.mark.parametrize("args, kwargs, names", [
     ((200.0, 0.33, 1.12e9), {}, ["E = 200.0 Pa is below 1e+06 Pa"]),            # E in GPa

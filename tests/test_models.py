@@ -133,7 +133,7 @@ def test_weir_tallon_high_speed_slope_and_unit_velocity():
     # documented: formula returned below the unit speed (> 1), cap only on request
     assert models.weir_tallon(0.5 * V_unit, Sy, E_eff, rho) > 1.0
     assert models.weir_tallon(0.5 * V_unit, Sy, E_eff, rho, cap=True) == 1.0
-    # issue 13: infinite at V1 = 0, refused (capped: the limit 1)
+    # infinite at V1 = 0, refused (capped: the limit 1)
     with pytest.raises(ValueError, match="V1 must be > 0"):
         models.weir_tallon(0.0, Sy, E_eff, rho)
     assert models.weir_tallon(0.0, Sy, E_eff, rho, cap=True) == 1.0

@@ -1,4 +1,4 @@
-"""Objects users build pickle (issue 13, item 13): Curve, Scene, Table, ContactLaw, and on a Dask
+"""Objects users build pickle: Curve, Scene, Table, ContactLaw, and on a Dask
 cluster with process workers."""
 import pickle
 

@@ -1,4 +1,4 @@
-"""Tests of the forward map (fastrest.forward) and rough-surface impacts (fastrest.rough), issue 6.
+"""Tests of the forward map (fastrest.forward) and rough-surface impacts (fastrest.rough).
 
 References used here:
 * fastrest.energy.f_star_kernel / jackson_green.p_star_kernel / direct (the single-sphere quadrature and
@@ -189,7 +189,7 @@ ONSET = (1e-12, 1e-9, 1e-6)  # V1* - 1 (one summit) or w* - 1 of the tallest sum
 
 @pytest.mark.parametrize("model", UNLOADINGS)
 def test_single_summit_keeps_relative_accuracy_at_the_onset_of_yield(model):
-    """Issue 12 item 6: one summit just past V1* = 1 gives 1 - e^2 as the single-sphere solver.
+    """One summit just past V1* = 1 gives 1 - e^2 as the single-sphere solver.
 
     M = U_c/2 makes V_c = sqrt(2 U_c/M) = 2 m/s exactly, so V1 = 2 V1* carries V1* = 1 + x
     exactly, where direct.loss_exact is exact (it agrees with the 40-digit tests/reference.py). The
@@ -525,9 +525,9 @@ def test_sweep_local():
 
 
 def test_sweep_reports_a_failed_surface_and_goes_on():
-    """Issue 21: one refused surface (a bad parameter, a speed past the model's range for its
-    summits) aborted the whole sweep; now its entry is NaN, kind "failed", and ``errors`` names it;
-    on_error="raise" raises as before."""
+    """One refused surface (a bad parameter, a speed past the model's range for its summits) does
+    not abort the sweep: its entry is NaN, kind "failed", and ``errors`` names it; on_error="raise"
+    raises."""
     V = np.array([0.01, 0.1])
     good = {"material": STEEL, "R_a": R_A, "gw": {"eta": 1e10, "sigma": IP.omega_c, "A_n": 1e-7}}
     specs = [good, dict(good, R_a=-1.0), {"material": STEEL, "R_a": R_A, "heights": [0.0]}, good]

@@ -1,4 +1,4 @@
-"""Issue 20, items 2 and 3: what ``--out`` or a path points at is never harmed, every option is
+"""What ``--out`` or a path points at is never harmed, every option is
 checked before anything is created, input files are read as table files are, counts are bounded,
 a full disk gives an OSError naming the file, and Python errors name Python parameters.
 

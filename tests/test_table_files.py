@@ -232,7 +232,7 @@ def test_damaged_corpus_is_refused(tiny, tmp_path):
 
 @pytest.mark.slow
 def test_damaged_default_table_corpus_is_refused(tmp_path):
-    """The audit's setting: 400 metadata byte flips, 100 data flips and 40 zeroed pages of the
+    """A fuzzing campaign's setting: 400 metadata byte flips, 100 data flips and 40 zeroed pages of the
     shipped table, plus the hostile and special cases built from it."""
     cases = damaged_corpus.make_corpus(tables.default_table_path(), tmp_path / "corpus", n_random=400,
                                        n_pages=40, lazy=True)
@@ -251,7 +251,7 @@ def test_table_file_error_is_the_only_error(tiny, tmp_path):
         assert str(p) in str(exc.value)
 
 
-# --- files resealed after damage reach HDF5 only in a check process (issue 13, item 2) -------------
+# --- files resealed after damage reach HDF5 only in a check process --------------------------------
 
 def _resealed(n, pick=None):
     cases = [c for c in damaged_corpus.byte_cases(tables.default_table_path(), 0, 0, 2024, n_resealed=n)
@@ -289,7 +289,7 @@ def test_resealed_file_that_crashes_hdf5_is_refused():
 
 @pytest.mark.slow
 def test_resealed_corpus_300_is_refused_or_harmless():
-    """The audit's setting: 300 resealed metadata flips (before the check process: 171 accepted with
+    """A fuzzing campaign's setting: 300 resealed metadata flips (before the check process: 171 accepted with
     the same numbers, 128 refused, 1 crash of the whole process)."""
     results = _check_resealed(_resealed(300))
     assert sum(r[2] == "refused" for r in results) >= 100

@@ -1,4 +1,4 @@
-"""The table's stored W* has a reader (issue 15, item 7): Table.W_star and Table.loading_energy,
+"""The table's stored W* has a reader: Table.W_star and Table.loading_energy,
 and the registry of loaded tables does not keep a stale table after its file is rewritten.
 
 References: fastrest.W_star / fastrest.loading_energy (composite Gauss-Legendre quadrature of the

@@ -1,4 +1,4 @@
-"""The tables package documents what it exports (issue 15, item 8): every name of its modules'
+"""The tables package documents what it exports: every name of its modules'
 ``__all__`` has a numpydoc docstring (or, for a constant, a ``#:`` comment), and the Examples in
 those docstrings run and give what they show."""
 import doctest

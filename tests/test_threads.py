@@ -1,4 +1,4 @@
-"""Parallel kernels from several Python threads under Numba's workqueue layer (issue 13, item 4).
+"""Parallel kernels from several Python threads under Numba's workqueue layer.
 
 workqueue is not thread-safe: two threads inside parallel kernels at once abort the process. Each
 case runs in a subprocess with NUMBA_THREADING_LAYER=workqueue and a time limit; it must exit 0
