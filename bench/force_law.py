@@ -112,7 +112,7 @@ def cost(cfg, log):
     cases = {"hertz": (lambda: _loop_hertz(w, 1), n)}
     for m in NAMES:
         cases[f"contact_force ({m})"] = (lambda m=m: _loop_law(laws[m].data, states, w, 1), n)
-    hard = fastrest.contact_law(0.005, 0.33, "brake", et_ratio=0.01)  # Ghaednia et al. (issue 23)
+    hard = fastrest.contact_law(0.005, 0.33, "brake", et_ratio=0.01)  # Ghaednia et al. (2019)
     cases["contact_force (brake, Et/E = 0.01)"] = (lambda: _loop_law(hard.data, states, w, 1), n)
     cases["exact JG law, no history"] = (lambda: _loop_exact(w, 0.005, 0.33, 1), n)
     t = interleaved(cases, cfg["rounds"], ref="hertz")
@@ -166,7 +166,7 @@ def write(t, frac, imp, conv, cfg, path):
          "| force | ns per call (median) | x Hertz |", "|---|---|---|"]
     for name, x in t.items():
         L.append(f"| {name} | {x.median * 1e9:.2f} | {x.ratio:.2f} |")
-    L += ["", "Target (issue 11): contact_force <= 3x a plain Hertz force in the same loop.", "",
+    L += ["", "Target: contact_force <= 3x a plain Hertz force in the same loop.", "",
           "## 2. One time-stepped impact", "",
           f"`ContactLaw.impact(v1_star, {STEPS_1E8})` (velocity Verlet, switch located, JCG, eps_y = 0.005, "
           "nu = 0.33):", "", "| impact | time (median) |", "|---|---|"]

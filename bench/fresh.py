@@ -15,7 +15,7 @@ from .timing import wait_for_quiet
 REPO = Path(__file__).resolve().parent.parent
 
 #: First calls in a fresh process after ``fastrest warmup`` (run once at the start, nothing else
-#: warms the cache): every entry point warmup compiles (issue 13, item 14).
+#: warms the cache): every entry point warmup compiles.
 FIRST_USE = {
     "fastrest.e_star(5.0, 0.005, 0.33)": "fastrest.e_star(5.0, 0.005, 0.33)",
     "fastrest.curve(0.005, 0.33).e(5.0)": "fastrest.curve(0.005, 0.33).e(5.0)",

@@ -11,13 +11,13 @@ date, and prints the same:
 2. **Speed against the floor**, measured in the same run: the device's copy bandwidth (a
    device-to-device copy, bytes read + written per second), and for each kernel the bytes it must
    move per point (its inputs and output) over that bandwidth, the floor; the ratio ns per point /
-   floor is checked against issue 22's targets: ``e_curve`` <= 2x, ``e_material`` (16 materials)
+   floor is checked against the GPU targets: ``e_curve`` <= 2x, ``e_material`` (16 materials)
    <= 3x, ``e_table`` (every point its own material) <= 10x, and ``contact_force`` in a DEM step
    <= 3x the same step with a Hertz force (no history); the exported C header (``fastrest export
    c``) compiled with ``nvcc`` as device code, timed and compared bit for bit with ``Curve.e``
    (skipped, with the reason, where ``nvcc`` is missing or the compile fails).
 3. **Rough surfaces**: one impact (:func:`fastrest.cuda.rough_impact`) on explicit surfaces of 1e7
-   and 1e8 Gaussian summits, the heights already on the device, against issue 22's target (one
+   and 1e8 Gaussian summits, the heights already on the device, against the target (one
    impact on 1e8 summits in under 50 ms), and e against ``RoughSurface.impact`` on the CPU.
 
 Times are the best of several launches, wall-clock around ``cuda.synchronize()`` (sizes large enough
@@ -39,9 +39,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 
-#: Issue 22's targets: ns per point over the floor (e_*), or over the Hertz step (contact_force).
+#: The GPU targets: ns per point over the floor (e_*), or over the Hertz step (contact_force).
 TARGETS = {"e_curve": 2.0, "e_material": 3.0, "e_table": 10.0, "contact_force": 3.0, "c_header": 2.0}
-#: Issue 22's target for one impact on 1e8 explicit summits (ms).
+#: The target for one impact on 1e8 explicit summits (ms).
 ROUGH_TARGET_MS = 50.0
 
 

@@ -1,6 +1,6 @@
 """Is an Et/E axis in the shipped table worth its size? ``python -m bench.hardening_axis``.
 
-Issue 23 asks for a table with an Et/E axis only if measured worth its size. e depends on
+A table gets an Et/E axis only if measured worth its size. e depends on
 h = Et/E through h^(1 - (w - 1) k^2) (Ghaednia et al. 2019's Upsilon), which is not analytic at
 h = 0 and whose exponent varies with w: a polynomial axis in h converges slowly. For the Table 1
 material and Brake unloading, this fits one Chebyshev polynomial in h (and in sqrt(h)) on [0, 0.5]

@@ -1,4 +1,4 @@
-"""The direct solver near the end of JCG's eq (35): ``python -m bench.jcg_end`` (issue 12, item 5).
+"""The direct solver near the end of JCG's eq (35): ``python -m bench.jcg_end``.
 
 Extrapolating far past w_m* = 425 (small eps_y), eq (35)'s w_res/w_m reaches 1 at w_m* = 10017.5
 and e ~ sqrt(distance to the end). For speeds V1* = (1 - d) x the end speed

@@ -1,4 +1,4 @@
-"""Issue 23's "no slowdown of the Jackson-Green paths": old code against new, interleaved.
+"""No slowdown of the Jackson-Green paths with the loading-law layer: old code against new, interleaved.
 
 ``python -m bench.loading_ab --old /path/to/old/checkout`` times, in alternating subprocesses
 (old, new, old, new, ...; each with its own empty Numba cache, warmed before timing), the two

@@ -1,6 +1,6 @@
 """Multi-material tables, old code against new code in the same run: ``python -m bench.multi_material_ab``.
 
-Issue 12 allows no more than 10 % slowdown. ``fastrest.e_star(v, eps_y, nu)`` with every point its own
+The target allows no more than 10 % slowdown. ``fastrest.e_star(v, eps_y, nu)`` with every point its own
 material is timed against the closed-form fit kernel (JGM eqs 42-44, per-point eps_y) in the same
 subprocess, for two versions of fastrest, each in its own interpreter (``--old`` and ``--new``: the
 python of a venv with that version installed). Subprocesses alternate old, new, old, new, ... so that
@@ -17,7 +17,7 @@ Point sets (V1* log-uniform, points shuffled, points either version's table refu
 
 Only public names present in both versions are used (``fastrest.e_star``, ``fastrest.jit.e_table``,
 ``fastrest.models.jgm_fit_jcg_scalar``, ``fastrest.models.jgm_fit_jcg_array``, called
-``jgm_fit_jcg_kernel`` before issue 15).
+``jgm_fit_jcg_kernel`` in older versions).
 Writes bench/MULTI_MATERIAL_AB.md.
 """
 import argparse
@@ -177,7 +177,7 @@ def _write(path, rows, meta):
              "subprocess (the fit kernel `jgm_fit_jcg_array`, or a dependent chain of `jgm_fit_jcg_scalar` "
              "for the latency case); old and new versions in alternating subprocesses; medians over "
              f"{meta['rounds']} subprocesses per version ({meta['inner']} rounds each). The last column is "
-             "the issue-12 criterion (<= 1.10).", "",
+             "the slowdown criterion (<= 1.10).", "",
              f"* old: {meta['old_commit']}", f"* new: {meta['new_commit']}",
              f"* machine: {meta['cpu']}, {meta['nproc']} CPUs, Numba threads {meta['threads']}",
              f"* load average before / after: {meta['load0']} / {meta['load1']}; other processes kept "

@@ -1,4 +1,4 @@
-"""Accuracy of rough-surface 1 - e_s^2 near the onset of yield (issue 12 item 6).
+"""Accuracy of rough-surface 1 - e_s^2 near the onset of yield.
 
     python -m bench.rough_onset          # from the repository root; prints a markdown table
 

@@ -1,4 +1,4 @@
-"""Part 3: the issue's targets, met or not, with the measured figures."""
+"""Part 3: the performance targets, met or not, with the measured figures."""
 import math
 
 from .timing import fmt_err, fmt_ratio, fmt_time
