@@ -167,6 +167,8 @@ def check_bool(x: object, name: str) -> bool:
 
 def check_count(x: object, name: str, lo: int, hi: int) -> int:
     """A whole number ``lo <= x <= hi`` (an int); TypeError for non-numbers, ValueError otherwise."""
+    if isinstance(x, (np.timedelta64, np.datetime64)):  # numbers.Integral, yet a duration or a date
+        raise TypeError(f"{name} must be a whole number, got {_short(x)} ({type(x).__name__})")
     if isinstance(x, numbers.Integral) and not isinstance(x, (bool, np.bool_)):
         v = int(x)
     else:

@@ -87,7 +87,7 @@ def _failed(v, m, unloading):
 
 def surface_from_params(material: Material | None = None, R_a: Any = None, heights: ArrayLike | None = None,
                         gw: GreenwoodWilliamson | dict[str, Any] | None = None, gaussian: Sequence[Any] | None = None, E: float | None = None,
-                        nu: float | None = None, Sy: float | None = None, et_ratio: float = 0.0,
+                        nu: float | None = None, Sy: float | None = None, et_ratio: float | None = None,
                         loading: str | None = None) -> RoughSurface:
     """Build a :class:`RoughSurface` from plain parameters: the default factory of :func:`sweep`.
 
@@ -107,7 +107,8 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
     E, nu, Sy : float, optional
         Young's modulus (Pa), Poisson's ratio (-), yield strength (Pa), without ``material``.
     et_ratio : float, optional
-        Strain hardening Et/E of the summits (-), 0 <= et_ratio < 1; default 0.
+        Strain hardening Et/E of the summits (-), 0 <= et_ratio < 1; default None: the
+        material's own Et/E (0 without ``material``).
     loading : {None, "jackson-green", "ghaednia"}, optional
         The summits' loading law; None picks it from ``et_ratio`` (:class:`RoughSurface`).
 
@@ -162,7 +163,7 @@ def _sweep_task(factory, params, array_keys, *args):
         return exc
 
 
-def _rebuild_surface(material, R_a, heights=None, gw=None, et_ratio=0.0, loading=None):
+def _rebuild_surface(material, R_a, heights=None, gw=None, et_ratio=None, loading=None):
     """Factory for RoughSurface objects sent to Dask (their :meth:`RoughSurface.params`)."""
     return RoughSurface(material, R_a, heights=heights, gw=gw, et_ratio=et_ratio, loading=loading)
 
@@ -239,6 +240,9 @@ def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jc
     >>> [r.kind for r in out], [i for i, _ in out.errors], out[2].e
     (['statistical', 'statistical', 'failed'], [2], array([nan, nan]))
     """
+    if isinstance(surfaces, (RoughSurface, dict, str, bytes)) or not isinstance(surfaces, Iterable):
+        raise TypeError("surfaces must be a sequence of RoughSurface objects or of dicts of parameters; "
+                        f"got {type(surfaces).__name__}")
     surfaces = list(surfaces)
     Ma = as_float_array(M, "M")
     if Ma.ndim == 0:
