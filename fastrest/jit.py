@@ -36,7 +36,8 @@ row of :data:`STATE_SIZE` per contact) gives the normal force with history, and
 :func:`critical_scales` the critical values of a contact from the two bodies' properties (the
 same code as :class:`fastrest.Impact`). Several materials in one loop (``numba.prange`` over
 contacts of different materials): :func:`contact_force_stacked` with the :class:`StackedLaws` of
-:func:`fastrest.force_law.stack_laws` and each contact's material index. See
+:func:`stack_laws` (a Python function, also ``fastrest.force_law.stack_laws``: call it before the
+loop) and each contact's material index. See
 docs/examples/dem_wall.py. The energy a contact has dissipated so far, from its state row:
 :func:`dissipated_energy` (:func:`dissipated_energy_stacked`; docs/examples/dem_energy.py). Strain
 hardening: a law built with ``et_ratio`` = Et/E > 0 loads along Ghaednia et al.'s (2019) law
@@ -52,7 +53,7 @@ from .critical import CriticalScales, critical_scales, yield_et_ratio
 from .curve_data import CurveData, e_curve, loss_curve, omega_m_curve
 from .scene import SceneData, material_index, scene_value
 from .force_law import (STATE_SIZE, StackedLaws, contact_force, contact_force_stacked, dissipated_energy,
-                        dissipated_energy_stacked, hertz_contact_time)
+                        dissipated_energy_stacked, hertz_contact_time, stack_laws)
 from .loading import GHAEDNIA, JACKSON_GREEN
 from .tables import TableData, table_value
 from .unloading import BRAKE, ETSION, JCG
@@ -63,7 +64,7 @@ from .unloading import BRAKE, ETSION, JCG
 __all__ = ["CurveData", "SceneData", "TableData", "omega_m_material", "e_material", "loss_material", "JCG", "ETSION",
            "BRAKE", "omega_m_curve", "e_curve", "loss_curve", "omega_m_table", "e_table", "loss_table",
            "STATE_SIZE", "contact_force", "hertz_contact_time", "CriticalScales", "critical_scales",
-           "StackedLaws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked", "yield_et_ratio",
+           "StackedLaws", "stack_laws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked", "yield_et_ratio",
            "JACKSON_GREEN", "GHAEDNIA"]
 
 

@@ -265,7 +265,8 @@ def _fused_pairs(modules):
 def test_every_function_has_a_kernel():
     import fastrest.jit as fj
     functions = {n for n in fj.__all__ if callable(getattr(fj, n)) and not isinstance(getattr(fj, n), type)
-                 and not hasattr(getattr(fj, n), "_fields")}
+                 and not hasattr(getattr(fj, n), "_fields")
+                 and hasattr(getattr(fj, n), "py_func")}   # stack_laws: Python, called before the loop
     assert functions == set(KERNELS)
 
 
