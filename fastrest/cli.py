@@ -1,11 +1,13 @@
-"""Command line: ``fastrest e`` (the model for one impact), ``build``, ``info``, ``warmup``, ``figures``,
-``export`` (:mod:`fastrest.export.cli`)."""
+"""Command line: ``fastrest e`` (the model for one impact, :mod:`fastrest._impact_cli`), ``build``,
+``info``, ``warmup``, ``figures``, ``export`` (:mod:`fastrest.export.cli`).
+
+What a user sees: errors as ``fastrest COMMAND: error: ...`` (exit status 2 for bad input, 1 for a
+file that cannot be read or written), warnings as ``fastrest COMMAND: warning: ...`` on stderr.
+"""
 from __future__ import annotations
 
-from typing import Any
 import argparse
 import json
-import math
 import os
 import re
 import sys
@@ -14,126 +16,9 @@ import warnings
 
 import numpy as np
 
+from ._impact_cli import add_parser as add_e_parser, models_text
+
 __all__ = ["main"]
-
-
-def _model_names(values):
-    """Names given to ``e --model``/``--models``: repeatable, comma-separated, or ``all``."""
-    from .models import MODELS
-
-    names: list[str] = []
-    for value in values or []:
-        for name in value.split(","):
-            name = name.strip()
-            if name == "all":
-                names.extend(MODELS)
-            elif name in MODELS:
-                names.append(name)
-            else:
-                raise ValueError(f"unknown comparison model {name!r}; choose from "
-                                 f"{', '.join(MODELS)} or 'all'")
-    return list(dict.fromkeys(names))
-
-
-def _cmd_e(args):
-    from . import direct
-    from . import models
-    from ._validation import ValidityWarning
-    from .impact import Impact
-    from .materials import Material
-    from .unloading import MODELS, NAMES
-
-    names = _model_names(args.models)
-    if args.rho is None and args.mass is None:
-        raise ValueError("give --rho (sphere density, kg/m^3) or --mass (kg of the moving body)")
-    if args.flat_E is None and (args.flat_nu is not None or args.flat_Sy is not None):
-        raise ValueError("--flat-nu and --flat-Sy need --flat-E (without it the flat is rigid)")
-    if args.flat_E is None and args.flat_Et is not None:
-        raise ValueError("--flat-Et needs --flat-E (without it the flat is rigid)")
-    sphere = Material(args.E, args.nu, args.Sy, rho=args.rho, Et=args.Et)
-    flat = None
-    if args.flat_E is not None:
-        if args.flat_nu is None:
-            raise ValueError("--flat-E needs --flat-nu (the flat's Poisson's ratio)")
-        flat = Material(args.flat_E, args.flat_nu, args.flat_Sy if args.flat_Sy is not None else math.inf,
-                        Et=args.flat_Et if args.flat_Et is not None else 0.0)
-    imp = Impact(sphere, args.R, flat=flat, mass=args.mass)
-    crit = imp.critical_values()
-    V = np.asarray(args.V, dtype=float)
-    try:
-        v1: Any = imp.v1_star(V, "jcg", extrapolate=args.extrapolate)  # every model is printed; JCG ends first
-    except ValueError as exc:
-        msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
-        raise ValueError(f"--V: {msg}") from None
-    with warnings.catch_warnings(record=True) as caught:
-        # record the model's own warnings (validity, extrapolation) for the output; others pass through
-        warnings.simplefilter("always", ValidityWarning)
-        sols = {m: direct.solve(v1, imp.eps_y, imp.nu, m, extrapolate=args.extrapolate, et_ratio=imp.et_ratio,
-                                loading=imp.loading) for m in NAMES}
-        others, model_notes = {}, []
-        for n in names:
-            # one value per speed: a comparison model undefined at a speed (Weir-Tallon at V = 0)
-            # gives null there, with the reason, instead of Infinity or losing the other rows
-            vals: list[float | None] = []
-            for v in V:
-                try:
-                    vals.append(float(models.evaluate(n, imp, float(v))))
-                except ValueError as exc:
-                    vals.append(None)
-                    model_notes.append(f"{n} at V = {float(v):g} m/s: {exc}")
-            others[n] = vals
-    rows: list[dict[str, Any]] = [{"V": float(a), "V1_star": float(b),
-             "omega_m_star": float(np.atleast_1d(sols[NAMES[0]]["omega_m_star"])[i])} for i, (a, b) in enumerate(zip(V, v1))]
-    for m in NAMES:
-        for r, e in zip(rows, np.atleast_1d(sols[m]["e"])):
-            r["e_" + m] = float(e)
-    for m in NAMES:
-        for r in rows:
-            r["V2_" + m] = r["V"] * r["e_" + m]
-    for n, vals in others.items():
-        for r, x in zip(rows, vals):
-            r["e_" + n] = x
-    notes = sorted({str(w.message) for w in caught if issubclass(w.category, ValidityWarning)}) + model_notes
-    for w in caught:
-        if not issubclass(w.category, ValidityWarning):
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    if args.json:
-        out = {"critical": crit, "impacts": rows, "warnings": notes}
-        if imp.et_ratio > 0.0:
-            out["loading"] = {"law": imp.loading, "et_ratio": imp.et_ratio}
-        if names:
-            out["models"] = names
-        json.dump(out, sys.stdout, indent=2, allow_nan=False)  # strict JSON: no NaN/Infinity
-        print()
-        return 0
-    if flat is None:
-        print("Jackson, Green & Marghitu (2010): sphere on a rigid flat")
-    else:
-        kind = "an elastic flat (never yields)" if math.isinf(flat.Sy) else "an elastic-plastic flat"
-        who = "sphere" if imp.yielding is sphere else "flat"
-        print(f"Jackson, Green & Marghitu (2010): sphere on {kind}; the {who} yields first (smaller C(nu) Sy)")
-    if imp.et_ratio > 0.0:
-        print(f"  strain hardening: Ghaednia et al. (2019) loading, Et/E = {imp.et_ratio:.6g} (docs/model.md section 12)")
-    units = {"E_eff": "Pa", "R_eff": "m", "mass": "kg", "nu": "-", "Sy": "Pa", "C": "-", "eps_y": "-",
-             "omega_c": "m", "P_c": "N", "A_c": "m^2", "U_c": "J", "V_c": "m/s"}
-    for k, val in crit.items():
-        print(f"  {k:<8s} = {val:.6g} {units[k]}")
-    print()
-    widths = {n: max(10, len(n) + 4) for n in names}
-    extra_head = "".join(f" {'e (' + n + ')':>{widths[n]}s}" for n in names)
-    heads = "".join(f" {'e (' + MODELS[m].short + ')':>11s}" for m in NAMES)
-    print(f"  {'V (m/s)':>10s} {'V1*':>10s} {'w_m*':>10s}{heads}{extra_head}")
-    for r in rows:
-        extra = "".join(f" {r['e_' + n]:{widths[n]}.6f}" if r["e_" + n] is not None
-                        else f" {'n/a':>{widths[n]}s}" for n in names)
-        cols = "".join(f" {r['e_' + m]:11.6f}" for m in NAMES)
-        print(f"  {r['V']:10.4g} {r['V1_star']:10.4g} {r['omega_m_star']:10.5g}{cols}{extra}")
-    if names:
-        print("  comparison models: fastrest.models.evaluate (see docs/model.md); values are the "
-              "published formulas, not clipped to e <= 1")
-    for n in notes:
-        print(f"  warning: {n}")
-    return 0
 
 
 def _parse_blocks(text):
@@ -151,13 +36,11 @@ def _cmd_build(args):
     grid = {k: getattr(args, k) for k in tables.DEFAULT_GRID if getattr(args, k, None) is not None}
     if args.default:
         if grid:
-            print("fastrest build: --default takes no grid options", file=sys.stderr)
-            return 2
+            raise ValueError("--default takes no grid options")
         out = args.out or tables.source_tree_table_path()
         if out is None:
-            print("fastrest build: --default writes fastrest/tables/default.h5 of a source checkout; this "
-                  "fastrest is installed without one, so give --out FILE", file=sys.stderr)
-            return 2
+            raise ValueError("--default writes fastrest/tables/default.h5 of a source checkout; this "
+                             "fastrest is installed without one, so give --out FILE")
     else:
         out = args.out
     from .tables.error import DEFAULT_TOL
@@ -165,7 +48,12 @@ def _cmd_build(args):
     tol = args.tol if args.tol is not None else (DEFAULT_TOL if args.default else None)
     from .export.cli import cli_names
     from .tables.error import AccuracyWarning
+    from .tables.file import check_target
 
+    with cli_names({"path": "--out"}):
+        tables.normalise_grid(grid)  # the grid options first, then --out
+        if args.out is not None:  # one rule with the exports: --out's directory must exist
+            check_target(args.out, "path", "the table file")
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", AccuracyWarning)
@@ -198,12 +86,12 @@ def _cmd_info(args):
         try:
             args.file = str(tables.default_table_path())
         except FileNotFoundError as exc:
-            print(f"fastrest info: {exc}", file=sys.stderr)
+            print(f"fastrest info: error: {exc}", file=sys.stderr)
             return 1
     try:
         t = tables.read(args.file)
     except (tables.TableFileError, OSError) as exc:
-        print(f"fastrest info: invalid table: {exc}", file=sys.stderr)
+        print(f"fastrest info: error: invalid table: {exc}", file=sys.stderr)
         return 1
     a = t.attrs
     if args.json:
@@ -290,7 +178,7 @@ def _cmd_figures(args):
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        print("fastrest figures: matplotlib is required; install it with: pip install fastrest[plot]",
+        print("fastrest figures: error: matplotlib is required; install it with: pip install fastrest[plot]",
               file=sys.stderr)
         return 1
     from .export.cli import cli_names
@@ -327,19 +215,6 @@ _GRID_HELP = {
 }
 
 
-def _models_text():
-    """'the three unloading models JCG, Etsion and Brake', from the registry (fastrest.unloading):
-    the help texts cannot go stale when a model is added."""
-    from .unloading import MODELS
-
-    short = [m.short for m in MODELS.values()]
-    if len(short) == 1:
-        return f"the unloading model {short[0]}"
-    words = {2: "both", 3: "the three", 4: "the four"}
-    return (f"{words.get(len(short), f'the {len(short)}')} unloading models "
-            f"{', '.join(short[:-1])} and {short[-1]}")
-
-
 _NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
 
@@ -351,34 +226,10 @@ def main(argv: list[str] | None = None) -> int:
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND", title="commands")
 
-    pe = sub.add_parser("e", help="e and w_m* of one sphere at given impact speeds (SI units, exact solver)",
-                        description="Critical values (JGM eqs 4-7, 23-28) and, per impact speed, V1* = V/V_c, "
-                                    f"w_m* and e for {_models_text()} (exact solver); --json adds "
-                                    "the rebound speeds V2 = e V (m/s).")
-    pe.add_argument("--E", type=float, required=True, help="sphere Young's modulus (Pa)")
-    pe.add_argument("--nu", type=float, required=True, help="sphere Poisson's ratio (-)")
-    pe.add_argument("--Sy", type=float, required=True, help="sphere yield strength (Pa)")
-    pe.add_argument("--R", type=float, required=True, help="sphere radius (m)")
-    pe.add_argument("--rho", type=float, help="sphere density (kg/m^3); gives the mass (or give --mass)")
-    pe.add_argument("--mass", type=float, help="mass of the moving body (kg); default: from --rho")
-    pe.add_argument("--flat-E", type=float, help="flat's Young's modulus (Pa); without it the flat is rigid")
-    pe.add_argument("--flat-nu", type=float, help="flat's Poisson's ratio (-); required with --flat-E")
-    pe.add_argument("--flat-Sy", type=float, help="flat's yield strength (Pa); without it the flat never yields")
-    pe.add_argument("--Et", type=float, default=0.0,
-                    help="sphere tangent modulus (Pa; default 0, elastic-perfectly plastic): strain hardening, "
-                         "Ghaednia et al. 2019 (write a negative value as --Et=-1)")
-    pe.add_argument("--flat-Et", type=float, help="flat's tangent modulus (Pa; default 0)")
-    pe.add_argument("--V", type=float, nargs="+", required=True, help="impact speeds (m/s)")
-    pe.add_argument("--extrapolate", action="store_true", help="allow w_m* > 425 (up to a/R = 1)")
-    pe.add_argument("--json", action="store_true", help="machine-readable output")
-    pe.add_argument("--model", "--models", dest="models", action="append", metavar="NAME",
-                    help="also print a comparison model's e (fastrest.models.evaluate): one of "
-                         "thornton, weir_tallon, chang_ling, wu, jgm_fit_jcg, jgm_fit_etsion, or all; "
-                         "repeatable or comma-separated")
-    pe.set_defaults(func=_cmd_e)
+    pe = add_e_parser(sub)
 
     pb = sub.add_parser("build", help="build a multi-material table (HDF5)",
-                        description=f"Tabulate w_m*, e and 1 - e^2 over eps_y, nu and V1* for {_models_text()}. "
+                        description=f"Tabulate w_m*, e and 1 - e^2 over eps_y, nu and V1* for {models_text()}. "
                                     "Defaults are the shipped table's grid.")
     pb.add_argument("--out", help="output file (default: the user cache, $FASTREST_CACHE_DIR)")
     pb.add_argument("--default", action="store_true",
@@ -404,11 +255,23 @@ def main(argv: list[str] | None = None) -> int:
     pi.add_argument("--json", action="store_true", help="all root attributes as JSON")
     pi.set_defaults(func=_cmd_info)
 
-    pw = sub.add_parser("warmup", help="compile every Numba kernel into the cache (run once after install)")
+    pw = sub.add_parser("warmup", help="compile every Numba kernel into the cache (run once after install)",
+                        description="Compile (or load from Numba's cache) every entry point once and print the "
+                                    "time each took: the direct solver, curves, scenes, the table's scalar and "
+                                    "parallel kernels, the fastrest.jit functions, rough surfaces, the contact "
+                                    "law and the comparison models. Run it once after installing: later "
+                                    "processes then load the kernels instead of compiling them (seconds each). "
+                                    "It writes nothing but Numba's cache.")
     pw.set_defaults(func=_cmd_warmup)
 
-    pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)")
-    pf.add_argument("--out", required=True, help="output directory (created if needed)")
+    pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)",
+                        description="Redraw Figs 2-8 of Jackson, Green & Marghitu (2010) from the model (the "
+                                    "loading energy, the maximum and residual interference, e against Chang & "
+                                    "Ling, the unloading models, alumina spheres on aluminium and on steel) and "
+                                    "e against V1* with strain hardening (Ghaednia et al. 2019): one PNG file "
+                                    "each (fig2_energy.png ... hardening_e.png) in --out, replaced atomically. "
+                                    "Needs matplotlib (pip install \"fastrest[plot]\").")
+    pf.add_argument("--out", required=True, help="output directory (created, with its parents, if needed)")
     pf.add_argument("--dpi", type=int, default=150, help="resolution, 1 to 1200 (default: 150)")
     pf.set_defaults(func=_cmd_figures)
 
@@ -422,6 +285,34 @@ def main(argv: list[str] | None = None) -> int:
         # negative value gets the model's own message ("E must be finite and > 0")
         parser._negative_number_matcher = _NEGATIVE_NUMBER
     args = p.parse_args(argv)
+    prefix = "fastrest " + args.cmd + (f" {args.what}" if getattr(args, "what", None) else "")
+    with warnings.catch_warnings():  # restores warnings.showwarning on the way out
+        warnings.showwarning = _warning_printer(prefix)
+        return _run(args, prefix)
+
+
+def _warning_printer(prefix):
+    """``warnings.showwarning`` for the command line: ``fastrest COMMAND: warning: message`` on
+    stderr, instead of Python's file, line number and source line."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        try:
+            print(f"{prefix}: warning: {message}", file=sys.stderr if file is None else file)
+        except OSError:  # stderr closed: a warning is not worth a failure
+            pass
+    return show
+
+
+def _os_error_text(exc):
+    """An OSError as a reader wants it: the message (naming the file), without ``[Errno N]``."""
+    if exc.strerror is None:
+        return str(exc)
+    text = exc.strerror
+    if exc.filename is not None:
+        text += f": {os.fsdecode(exc.filename)!r}"
+    return text
+
+
+def _run(args, prefix):
     try:
         code = args.func(args)
         sys.stdout.flush()  # a closed pipe shows here, not at interpreter exit
@@ -435,11 +326,10 @@ def main(argv: list[str] | None = None) -> int:
             pass
         return 141  # 128 + SIGPIPE, what a shell reports for a command killed by SIGPIPE
     except (ValueError, TypeError) as exc:
-        cmd = args.cmd + (f" {args.what}" if getattr(args, "what", None) else "")
-        print(f"fastrest {cmd}: error: {exc}", file=sys.stderr)
+        print(f"{prefix}: error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:  # unwritable --out, full disk: the message names the file
-        print(f"fastrest {args.cmd}: error: {exc}", file=sys.stderr)
+        print(f"{prefix}: error: {_os_error_text(exc)}", file=sys.stderr)
         return 1
 
 

@@ -251,8 +251,25 @@ class Curve:
 
     def _raise(self, bad):
         check_velocity(bad, "v1_star")
-        raise ValueError(f"v1_star = {float(bad[0])!r} is beyond this curve's v_max = {self.v_max!r} "
-                         "(build the curve with a larger v_max)")
+        raise ValueError(f"v1_star = {float(bad[0])!r} is beyond this curve's v_max = {self.v_max!r}: "
+                         + self._end_note())
+
+    def _end_note(self):
+        """Where this curve ends and how far a curve of its material may go (error messages)."""
+        mat = f"eps_y = {self.eps_y!r}, nu = {self.nu!r}" + (f", et_ratio = {self.et_ratio!r}" if self.et_ratio else "")
+        if self.v_max < self.v_limit:
+            return (f"build the curve with a larger v_max, up to V1* = {self.v_limit:.10g}, the model's limit "
+                    f"(w_m* = {OMEGA_M_STAR_MAX:g}) for {mat}")
+        if self.v_max == self.v_limit:
+            return (f"that is the model's limit (w_m* = {OMEGA_M_STAR_MAX:g}) for {mat}; extrapolate=True "
+                    "extends a curve past it (outside the validated range)")
+        end = speed_limit(self.eps_y, self.nu, extrapolate=True, unloading=self.unloading, et_ratio=self.et_ratio,
+                          loading=self.loading)
+        past = f"past the model's limit (w_m* = {OMEGA_M_STAR_MAX:g} at V1* = {self.v_limit:.10g})"
+        if self.v_max >= end:
+            return f"that is the end of the model extrapolated {past} for {mat}"
+        return (f"the curve is extrapolated {past}; the extrapolated model ends at V1* = {end:.10g} for {mat} "
+                "(a larger v_max where a curve can reach it; fastrest.direct computes up to the end)")
 
     if TYPE_CHECKING:  # what mypy sees: a scalar in gives a float out, a sequence an array
         @overload

@@ -349,7 +349,8 @@ class Scene:
             check_velocity(vf[bad], "v1_star")
             i = int(np.flatnonzero(bad)[0])
             raise ValueError(f"v1_star = {float(vf[i])!r} is beyond v_max = {float(self.data.v_max[kf[i]])!r} "
-                             f"of material {int(kf[i])} (build the scene with a larger v_max)")
+                             f"of material {int(kf[i])}: "
+                             + self.curves[int(kf[i])]._end_note().replace("the curve", "the scene"))
         if self._extrapolated and np.any(vf > self._v_limit[kf]):
             warn(f"V1* past w_m* = {OMEGA_M_STAR_MAX:g} for an extrapolated material of the scene: "
                  "the JG law is not validated there", ExtrapolationWarning)

@@ -195,6 +195,7 @@ def test_info_invalid_files_exit_1(capsys, tmp_path):
 
 
 def test_build_small_grid(capsys, tmp_path):
+    (tmp_path / "sub").mkdir()  # --out's directory must exist (tests/test_cli_messages.py)
     out_path = tmp_path / "sub" / "t.h5"
     code, out, err = run(["build", "--out", str(out_path), "--n-eps-y", "6", "--n-nu", "6",
                           "--eps-y-blocks", "16:6", "--n-eps-y-energy", "4", "--no-progress"], capsys)

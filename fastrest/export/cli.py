@@ -19,6 +19,18 @@ __all__ = ["add_parser", "cli_names"]
 
 _PAIR_OPTIONS = {k: "--" + k.replace("_", "-") for k in
                  ("E", "nu", "Sy", "R", "rho", "mass", "Et", "flat_E", "flat_nu", "flat_Sy", "flat_Et")}
+#: The columns a --pairs file needs (rho or mass), before the optional ones.
+_PAIR_COLUMNS_REQUIRED = ("name", "E", "nu", "Sy", "R", "rho")
+
+
+def _pairs_header() -> str:
+    """The header row of a --pairs file as the help and docs/export.md write it:
+    ``name,E,nu,Sy,R,rho[,mass,...]``, every column of :data:`fastrest.export.velocity.PAIR_KEYS`
+    in that order (the file may order its columns as it likes: they are read by name)."""
+    from .velocity import PAIR_KEYS
+
+    optional = [k for k in PAIR_KEYS if k not in _PAIR_COLUMNS_REQUIRED]
+    return ",".join(k for k in PAIR_KEYS if k in _PAIR_COLUMNS_REQUIRED) + "[," + ",".join(optional) + "]"
 
 
 @contextlib.contextmanager
@@ -62,6 +74,7 @@ def _cmd_c(args):
         critical = pair_names = None
         if args.materials is not None:
             materials, v_max = c_header.parse_materials(args.materials), args.v_max
+            _check_materials(args.materials, materials)
         elif physical:
             if args.v_max is not None:
                 raise ValueError("--v-max (a V1*) is for --materials; give --V-max (m/s) with physical properties")
@@ -91,6 +104,20 @@ def _cmd_c(args):
             line += f" (V up to {c[0].v_max * critical[k]['V_c']:.6g} m/s, V_c = {critical[k]['V_c']:.6g} m/s)"
         print(line)
     return 0
+
+
+def _check_materials(given, materials):
+    """Each --materials entry's eps_y, nu and Et/E in range; ValueError naming the entry."""
+    from .._validation import check_eps_y, check_nu
+    from ..loading import resolve
+
+    for k, (text, m) in enumerate(zip(given, materials)):
+        try:
+            check_eps_y(m[0])
+            check_nu(m[1])
+            resolve(None, m[2] if len(m) == 3 else 0.0)
+        except ValueError as exc:
+            raise ValueError(f"--materials entry {text!r} (material {k}): {exc}") from None
 
 
 def _command(args):
@@ -189,8 +216,9 @@ def _add_pair_options(parser):
     parser.add_argument("--Et", type=float, help="sphere's tangent modulus of strain hardening (Pa); default 0: "
                                                  "elastic-perfectly plastic")
     parser.add_argument("--flat-Et", dest="flat_Et", type=float, help="flat's tangent modulus (Pa); default 0")
-    parser.add_argument("--pairs", help="CSV file of pairs: header name,E,nu,Sy,R,rho"
-                                        "[,mass,Et,flat_E,flat_nu,flat_Sy,flat_Et,V_max]")
+    parser.add_argument("--pairs", help=f"CSV file of pairs, one per row, under a header row naming the columns "
+                                        f"(in any order): {_pairs_header()}; rho or mass; empty cells "
+                                        "are not given")
     parser.add_argument("--pair", action="append", metavar="NAME", help="only this pair of --pairs (repeatable)")
 
 
