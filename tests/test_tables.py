@@ -11,7 +11,6 @@ Table.measure_error).
 import json
 import math
 import os
-import platform
 import shutil
 import signal
 import subprocess
@@ -31,13 +30,6 @@ from damaged_corpus import reseal
 
 REPO = Path(__file__).resolve().parents[1]
 
-
-def _cpu_features():
-    try:
-        from numpy._core._multiarray_umath import __cpu_features__ as features
-    except ImportError:  # NumPy 1.x
-        from numpy.core._multiarray_umath import __cpu_features__ as features
-    return features
 
 V_SWITCH = 1.9 ** 1.25
 EPS_RANGE = (0.0005, 0.01)
@@ -288,40 +280,55 @@ def test_past_425_raises(eps, nu):
 # ============================================================================================
 # The shipped table is what the generator produces
 
-#: Platforms where the shipped table's arrays are reproduced bit for bit: x86-64 with glibc, whose
-#: exp/log/pow take their FMA code paths there (as on the machine that built the file). Masking
-#: glibc's FMA paths (GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA,-AVX2,...) moves ~10 % of the stored
-#: values by 1-6 ulp (worst 1.9e-13 relative, an Etsion 1 - e^2 near its zero).
-BIT_FOR_BIT_PLATFORM = (platform.machine() in ("x86_64", "AMD64") and platform.libc_ver()[0] == "glibc"
-                        and _cpu_features().get("FMA3", False))
-#: Elsewhere: the arrays to this many ulp-sized relative steps (1e-12 relative, 1e-15 absolute).
-ARRAY_RTOL, ARRAY_ATOL = 1e-12, 1e-15
-#: The stored measured errors (~1e-10) are differences of two values of order 1 that each carry the
-#: platform's libm rounding (a few ulp, 2.2e-16 each): compared to 1e-14 absolute. The audit saw
-#: 1.4e-16 (the same versions on another AVX-512 machine); masking glibc's FMA paths, 1.8e-16.
-MEASURED_ERROR_ATOL = 1e-14
+#: The shipped table's arrays went through exp/log/pow and Newton iterations on the machine that
+#: built it; another CPU or libm moves some of them by a few ulp. Compared to ARRAY_TOL of each
+#: array's largest magnitude (plus ARRAY_TOL relative): the quantities are differences of values of
+#: order one (1 - e^2 near its zero, e near 1), so their rounding is an ulp of the array's scale,
+#: not of the entry. Measured against the shipped file with glibc's non-FMA code paths, NumPy's
+#: baseline SIMD, Numba's generic CPU and OpenBLAS's Prescott kernels (the second CI pass): 11,530
+#: of 1,240,465 values move, by up to 1,024 ulp of an entry near a zero of 1 - e^2 and 1.5e-15 of
+#: its array's scale. 1e-12 leaves ~700x room and is still 100x below the table's own error.
+ARRAY_TOL = 1e-12
+#: The measured-error diagnostics are the maxima a search finds; its steps follow the last bits of
+#: libm, so a maximum is an estimate: relative MEASURED_ERROR_RTOL (a real change of accuracy, 1.1x,
+#: fails). Measured: 1.6e-5 on an AVX-512 machine, 1.4e-4 on the second CI path (the Etsion and Brake
+#: 1 - e^2, whose search stopped at another nu). Where the maximum lies (``at_*``) is not compared:
+#: two near-equal humps may trade places.
+MEASURED_ERROR_RTOL = 1e-2
+#: Below this, two measured errors both count as zero (an empty block, an exact region).
+MEASURED_ERROR_ZERO = 1e-15
 
 
-def _compare_measured_errors(a, b):
-    """The measured-error diagnostics of two builds agree to MEASURED_ERROR_ATOL (not their last bits,
-    and not the sample point of a maximum, which may move between two points within that tolerance)."""
-    assert sorted(a) == sorted(b)
-    for q in a:
-        x, y = a[q], b[q]
-        assert x["metric"] == y["metric"], q
-        for key in ("max_error", "max_rel_error", "max_abs_error"):
-            assert abs(x[key] - y[key]) <= MEASURED_ERROR_ATOL, (q, key, x[key], y[key])
-        assert len(x["by_block"]) == len(y["by_block"]), q
-        for i, (u, v) in enumerate(zip(x["by_block"], y["by_block"])):
-            assert abs(u - v) <= MEASURED_ERROR_ATOL, (q, i, u, v)
+def _compare_measured_errors(a, b, where=()):
+    """Two builds' measured-error diagnostics agree as estimates of maxima: the same structure, the
+    same text (metric names), every number within MEASURED_ERROR_RTOL relative, except locations
+    (keys ``at_*``), which need only be finite numbers in both."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and sorted(a) == sorted(b), (where, sorted(a), b)
+        for k in a:
+            if isinstance(k, str) and k.startswith("at_"):
+                for x in (a[k], b[k]):
+                    assert isinstance(x, (int, float)) and math.isfinite(x), (where + (k,), a[k], b[k])
+            else:
+                _compare_measured_errors(a[k], b[k], where + (k,))
+    elif isinstance(a, (list, tuple)):
+        assert isinstance(b, (list, tuple)) and len(a) == len(b), (where, a, b)
+        for i, (x, y) in enumerate(zip(a, b)):
+            _compare_measured_errors(x, y, where + (i,))
+    elif isinstance(a, (int, float)) and not isinstance(a, bool):
+        assert isinstance(b, (int, float)) and not isinstance(b, bool), (where, a, b)
+        assert math.isfinite(a) == math.isfinite(b) and (a == b or math.isfinite(a)), (where, a, b)
+        if a != b and max(abs(a), abs(b)) > MEASURED_ERROR_ZERO:
+            assert abs(a - b) <= MEASURED_ERROR_RTOL * max(abs(a), abs(b)), (where, a, b)
+    else:
+        assert a == b, (where, a, b)
 
 
 def test_shipped_default_table_matches_generator(tmp_path):
-    """`fastrest build --default` reproduces the shipped file: its arrays bit for bit (on
-    BIT_FOR_BIT_PLATFORM; elsewhere to ARRAY_RTOL), every attribute equal except the measured-error
-    diagnostics, which agree to MEASURED_ERROR_ATOL, and the checksum, which follows the arrays. The
-    grid axes avoid NumPy's vectorised exp/log/log1p, whose last bit depends on the CPU's
-    instruction set (AVX-512 or not)."""
+    """`fastrest build --default` reproduces the shipped file: the same axes, datasets, shapes,
+    NaNs and attributes, its arrays to ARRAY_TOL (the rounding of another CPU or libm, not a change
+    of the model), the measured-error diagnostics as estimates of maxima (_compare_measured_errors);
+    the checksum follows the arrays' bytes and is not compared."""
     shipped = tables.default_table_path()
     regen = tmp_path / "regen.h5"
     tables.build(regen, None, progress=False)
@@ -333,12 +340,13 @@ def test_shipped_default_table_matches_generator(tmp_path):
         for name in group_b:
             x, y = group_a[name], group_b[name]
             assert x.shape == y.shape and x.dtype == y.dtype, name
-            if BIT_FOR_BIT_PLATFORM:
-                assert x.tobytes() == y.tobytes(), name   # bit for bit, NaNs included
-            else:
-                np.testing.assert_allclose(x, y, rtol=ARRAY_RTOL, atol=ARRAY_ATOL, equal_nan=True, err_msg=name)
+            assert np.array_equal(np.isnan(x), np.isnan(y)), name
+            finite = np.isfinite(x)
+            assert np.array_equal(x[~finite], y[~finite], equal_nan=True), name
+            scale = np.max(np.abs(x[finite]), initial=0.0)
+            np.testing.assert_allclose(x[finite], y[finite], rtol=ARRAY_TOL, atol=ARRAY_TOL * scale, err_msg=name)
     assert a.dims == b.dims
-    derived = {"measured_error"} | ({"checksum"} if not BIT_FOR_BIT_PLATFORM else set())
+    derived = {"measured_error", "checksum"}
     assert {k: v for k, v in a.attrs.items() if k not in derived} == \
         {k: v for k, v in b.attrs.items() if k not in derived}
     _compare_measured_errors(a.attrs["measured_error"], b.attrs["measured_error"])
@@ -347,18 +355,42 @@ def test_shipped_default_table_matches_generator(tmp_path):
 
 
 def test_measured_error_comparison_tolerates_rounding_only():
-    """The comparison above passes the audit's two builds (4.918195017911131e-10 against
-    4.918196405689912e-10 for loss_brake's block 0) and fails a real change of accuracy (1.1x)."""
+    """The comparison above passes pairs of diagnostics from builds whose searches stopped at other
+    points (seen on an AVX-512 machine and with glibc's non-FMA code paths; the locations moved
+    too) and fails a real change of accuracy (1.1x) in any number of the shipped diagnostics (a
+    maximum, its absolute form, a block's), a changed metric, a lost location or a missing entry."""
+    seen = [("max_abs_error", 8.524875738658011e-08, 8.525012162863277e-08),
+            ("max_error", 5.128900776307788e-10, 5.128202029691664e-10),
+            ("at_nu", 0.20833565848214292, 0.20833129882812507),
+            ("at_eps_y", 0.0012731316525284016, 0.0012753260830409255),
+            ("by_block", [4.918195017911131e-10, 0.0], [4.918196405689912e-10, 0.0])]
+    _compare_measured_errors({"q": {k: x for k, x, _ in seen}}, {"q": {k: y for k, _, y in seen}})
+
     base = fastrest.load_table().attrs["measured_error"]
-    audit_a = json.loads(json.dumps(base))
-    audit_b = json.loads(json.dumps(base))
-    audit_a["loss_brake"]["by_block"][0] = 4.918195017911131e-10
-    audit_b["loss_brake"]["by_block"][0] = 4.918196405689912e-10
-    _compare_measured_errors(audit_a, audit_b)
-    worse = json.loads(json.dumps(base))
-    worse["e_jcg"]["max_error"] *= 1.1
-    with pytest.raises(AssertionError):
-        _compare_measured_errors(base, worse)
+
+    def fails(edit):
+        other = json.loads(json.dumps(base))
+        edit(other)
+        with pytest.raises(AssertionError):
+            _compare_measured_errors(base, other)
+
+    worse = 0
+    for q, d in base.items():
+        for key, value in d.items():
+            if key.startswith("at_"):
+                fails(lambda o, q=q, key=key: o[q].__setitem__(key, math.nan))
+            elif isinstance(value, float) and value > 0:
+                fails(lambda o, q=q, key=key: o[q].__setitem__(key, o[q][key] * 1.1))
+                worse += 1
+            elif isinstance(value, list):
+                for i, x in enumerate(value):
+                    if x > 0:
+                        fails(lambda o, q=q, key=key, i=i: o[q][key].__setitem__(i, o[q][key][i] * 1.1))
+                        worse += 1
+            elif isinstance(value, str):
+                fails(lambda o, q=q, key=key: o[q].__setitem__(key, o[q][key] + " (other)"))
+        fails(lambda o, q=q: o[q].pop(next(iter(o[q]))))
+    assert worse >= 3 * len(base)   # every quantity's maximum, its absolute form and its blocks
 
 
 def _build_in_subprocess(out, env_extra):
