@@ -267,7 +267,7 @@ def main(argv: list[str] | None = None) -> int:
     pf = sub.add_parser("figures", help="draw the paper's Figs 2-8 as PNG files (needs matplotlib)",
                         description="Redraw Figs 2-8 of Jackson, Green & Marghitu (2010) from the model (the "
                                     "loading energy, the maximum and residual interference, e against Chang & "
-                                    "Ling, the unloading models, alumina spheres on aluminium and on steel) and "
+                                    f"Ling, e for {models_text()}, alumina spheres on aluminium and on steel) and "
                                     "e against V1* with strain hardening (Ghaednia et al. 2019): one PNG file "
                                     "each (fig2_energy.png ... hardening_e.png) in --out, replaced atomically. "
                                     "Needs matplotlib (pip install \"fastrest[plot]\").")
