@@ -23,6 +23,7 @@ from . import unloading as _unloading
 from .cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows, jg_nodes
 from .energy import V_SWITCH, f_star_kernel, omega_m_sorted_kernel
 from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, fit_cells, float_bits, share_edges
+from ._validation import check_bool, check_count, check_eps_y, check_nu, check_velocity, real_scalar
 from .limits import raise_out_of_range, speed_limit, w_upper_model
 
 __all__ = ["BITS_PER_OCTAVE", "CurveData", "curve_value", "omega_m_curve", "e_curve", "loss_curve", "curve_array",
@@ -30,6 +31,8 @@ __all__ = ["BITS_PER_OCTAVE", "CurveData", "curve_value", "omega_m_curve", "e_cu
 
 #: Cells per octave of V1* (2^K); K = 5 measured to give ~4e-14 on e and w_m* (bench/, section 1).
 BITS_PER_OCTAVE = 5
+#: Largest K :func:`build_curve_data` takes (2^12 cells per octave: far past any accuracy need).
+MAX_BITS_PER_OCTAVE = 12
 
 CurveData = namedtuple("CurveData", ["model", "v_max", "shift", "base", "omega_rows", "e_rows", "loss_rows"])
 CurveData.__doc__ = """Numba-friendly data of one :class:`~fastrest.curve.Curve` (a namedtuple).
@@ -212,23 +215,25 @@ def curve_array(data, what, v, out):
 def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | None = None, extrapolate: bool = False,
                      bits_per_octave: int = BITS_PER_OCTAVE, jg_values: Any = None, et_ratio: float = 0.0,
                      loading: Any = None) -> CurveData:
-    """Tabulate one material: the :class:`CurveData` behind a :class:`~fastrest.curve.Curve`, unchecked inputs.
+    """Tabulate one material: the :class:`CurveData` behind a :class:`~fastrest.curve.Curve`.
 
     Parameters
     ----------
     eps_y : float
-        Sy/E' (-), > 0; not validated here (:func:`fastrest.curve` validates).
+        Sy/E' (-), > 0 and finite (validated as :func:`fastrest.curve` does, without its warning
+        outside the validated range).
     nu : float
-        Poisson's ratio (-), 0 <= nu < 0.5; not validated here.
+        Poisson's ratio (-), 0 <= nu < 0.5.
     unloading : {"jcg", "etsion", "brake"}
         Unloading model (:mod:`fastrest.unloading`).
     v_max : float, optional
-        Largest V1* tabulated (-); default: the model's limit (w_m* = 425, or a/R = 1, or where the
+        Largest V1* tabulated (-), finite and >= 0; default: the model's limit (w_m* = 425, or a/R = 1, or where the
         unloading model ends).
     extrapolate : bool
         Allow w_m* > 425 (keyword-only).
     bits_per_octave : int
-        Cells per octave of V1* above the kink, 2^bits_per_octave (keyword-only).
+        Cells per octave of V1* above the kink, 2^bits_per_octave, 1 <= bits_per_octave <= 12
+        (keyword-only).
     et_ratio : float, optional
         Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (keyword-only; default 0).
     loading : str, LoadingLaw or None, optional
@@ -244,9 +249,13 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
 
     Raises
     ------
+    TypeError
+        eps_y, nu, v_max, et_ratio or bits_per_octave is not a real number; extrapolate is not a bool.
     ValueError
-        Unknown ``unloading``; ``v_max`` past the model's limit, or past where a curve may tabulate
-        an extrapolated model that ends (the message names the limit).
+        eps_y <= 0 or not finite, nu outside [0, 0.5), v_max < 0 or not finite, et_ratio outside
+        [0, 1), bits_per_octave outside [1, 12]; unknown ``unloading``; ``v_max`` past the model's
+        limit, or past where a curve may tabulate an extrapolated model that ends (the message
+        names the limit).
 
     Notes
     -----
@@ -260,9 +269,10 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
     >>> d.v_max, d.e_rows.shape[1]
     (20.0, 8)
     """
+    eps_y, nu, v_max, extrapolate, bits_per_octave = _checked(eps_y, nu, v_max, extrapolate, bits_per_octave)
     unit = _unloading.get(unloading)
     model = unit.code
-    law = _loading.resolve(loading, et_ratio)
+    law = _loading.resolve(loading, real_scalar(et_ratio, "et_ratio"))  # validates et_ratio and loading
     w_hi = w_upper_model(eps_y, nu, extrapolate, model, law.code, et_ratio)
     limit = speed_limit(eps_y, nu, extrapolate=extrapolate, unloading=unloading, et_ratio=et_ratio, loading=law)
     if v_max is not None and v_max > limit:
@@ -296,6 +306,20 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
     rows = [np.ascontiguousarray(np.concatenate([h, fit_cells(edges, q)])) for h, q in zip(hertz, vals)]
     # JG cell of key k is row k - base + N_HERTZ
     return CurveData(model, float(v_max), shift, int(base) - N_HERTZ, *rows)
+
+
+def _checked(eps_y, nu, v_max, extrapolate, bits_per_octave):
+    """The inputs of :func:`build_curve_data`, validated as :func:`fastrest.curve` validates them
+    (the same helpers and messages): TypeError for non-numbers, ValueError out of range."""
+    eps_y = real_scalar(eps_y, "eps_y")
+    nu = real_scalar(nu, "nu")
+    check_eps_y(eps_y)
+    check_nu(nu)
+    if v_max is not None:
+        v_max = float(check_velocity(real_scalar(v_max, "v_max"), "v_max"))
+    extrapolate = check_bool(extrapolate, "extrapolate")
+    bits_per_octave = check_count(bits_per_octave, "bits_per_octave", 1, MAX_BITS_PER_OCTAVE)
+    return eps_y, nu, v_max, extrapolate, bits_per_octave
 
 
 @jit

@@ -25,13 +25,13 @@ import math
 
 import numpy as np
 from llvmlite import ir
-from numba.core import types
+from numba.core import cgutils, types
 from numba.extending import intrinsic
 
 from ._jit import jit
 
 __all__ = ["DEGREE", "ROW", "MANTISSA_BITS", "CHEB_U", "GAUSS_U", "VALUES_TO_COEFFS", "float_bits",
-           "fma", "data_pointer", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes",
+           "fma", "data_pointer", "row_in_range", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes",
            "share_edges", "values_to_coeffs", "fit_cells", "cell_index", "two_level_index", "row_polynomial",
            "cell_polynomial", "pointer_cell_polynomial"]
 
@@ -216,23 +216,65 @@ def estrin5(u, c0, c1, c2, c3, c4, c5):
     return fma(u2 * u2, fma(u, c5, c4), fma(u2, fma(u, c3, c2), fma(u, c1, c0)))
 
 
+@intrinsic
+def row_in_range(typingctx, rows, i):
+    """True when ``i`` (an integer) is a row of ``rows``: 0 <= i < n for a (n, >= ROW) array, or
+    for a 1-d array of n * ROW values (rows laid end to end); False for anything else (a negative
+    or too large index, a 2-d array with fewer than ROW columns).
+
+    One unsigned compare (a negative index wraps to a huge one). A :func:`data_pointer` carries
+    no length: for it this is the constant True (no code); pointers exist only in jit code, whose
+    caller holds the array and computes the index from it.
+    """
+    if not isinstance(i, types.Integer):
+        return None
+    if isinstance(rows, types.CPointer):
+        def codegen(context, builder, signature, args):
+            return context.get_constant(types.boolean, True)
+        return types.boolean(rows, i), codegen
+    if not (isinstance(rows, types.Array) and rows.ndim in (1, 2)):
+        return None
+
+    def codegen(context, builder, signature, args):  # noqa: F811
+        aryty, ity = signature.args
+        ary = context.make_array(aryty)(context, builder, args[0])
+        shape = cgutils.unpack_tuple(builder, ary.shape, aryty.ndim)
+        idx = context.cast(builder, args[1], ity, types.int64)
+        row = ir.Constant(ir.IntType(64), ROW)
+        if aryty.ndim == 2:
+            ok = builder.icmp_unsigned("<", idx, shape[0])
+            return builder.and_(ok, builder.icmp_signed(">=", shape[1], row))
+        return builder.icmp_unsigned("<", idx, builder.udiv(shape[0], row))
+
+    return types.boolean(rows, i), codegen
+
+
 @jit(inline=True)
 def row_polynomial(rows, i, u):
-    """Row i's polynomial at the local coordinate u in [-1, 1] (:func:`estrin5`)."""
+    """Row i's polynomial at the local coordinate u in [-1, 1] (:func:`estrin5`); NaN when ``i``
+    is not a row of ``rows`` (:func:`row_in_range`)."""
+    if not row_in_range(rows, i):
+        return math.nan
     i = np.uint64(i)  # row indices are never negative: skip Numba's wraparound (latency)
     return estrin5(u, rows[i, 2], rows[i, 3], rows[i, 4], rows[i, 5], rows[i, 6], rows[i, 7])
 
 
 @jit(inline=True)
 def cell_polynomial(rows, i, v):
-    """Evaluate row i's polynomial at v."""
+    """Evaluate row i's polynomial at v; NaN when ``i`` is not a row of ``rows``."""
+    if not row_in_range(rows, i):
+        return math.nan
     k = np.uint64(i)
-    return row_polynomial(rows, k, (v - rows[k, 0]) * rows[k, 1])
+    return estrin5((v - rows[k, 0]) * rows[k, 1], rows[k, 2], rows[k, 3], rows[k, 4], rows[k, 5],
+                   rows[k, 6], rows[k, 7])
 
 
 @jit(inline=True)
 def pointer_cell_polynomial(rows, i, v):
-    """:func:`cell_polynomial` on the :func:`data_pointer` of a (n, ROW) array of rows."""
+    """:func:`cell_polynomial` on the :func:`data_pointer` of a (n, ROW) array of rows (or on
+    such rows laid end to end in a 1-d array: NaN when ``i`` is not one of them)."""
+    if not row_in_range(rows, i):
+        return math.nan
     k = ROW * i
     return estrin5((v - rows[k]) * rows[k + 1], rows[k + 2], rows[k + 3], rows[k + 4], rows[k + 5],
                    rows[k + 6], rows[k + 7])
