@@ -143,6 +143,11 @@ def _speed_error(R):
                      fmt_err(ce["e_jcg"]["max_rel_error"]), fmt_err(ce["omega_m"]["max_rel_error"]),
                      fmt_err(ce["loss_jcg"]["max_rel_error"])])
     yield md_table(["Curve", "e (JCG)", "w_m*", "1 - e^2 (JCG)"], rows)
+    if R.get("stated_search"):
+        yield ("\nThe default's row and the direct solver's error are the worst of this sample and the search "
+               "for the worst of bench/STATED_FIGURES.md (`python -m bench.stated_figures`: every cell boundary "
+               "+/- 1 ulp, points inside every cell, local maximisation; e and w_m* over the JCG, Etsion and "
+               "Brake curves); the other rows are this sample's.")
     yield ""
     yield "### Error details: multi-material tables\n"
     rows = []

@@ -86,6 +86,7 @@ def run(quick, out_dir, log=print, command=None):
     R["policy"] = dict(timing.POLICY, spent_s=timing._SPENT[0])
     if R["load"]["other_cores"] is not None:
         R["load"]["other_cpu_s"] = R["load"]["other_cores"] * (time.perf_counter() - load_all.t0)
+    report.apply_search(R)
     R["targets"] = targets.evaluate(R)
     R["elapsed_s"] = time.perf_counter() - t0
     R["headline"] = report.headline(R)
@@ -107,7 +108,14 @@ def main(argv=None):
     p.add_argument("--update-readme", action="store_true",
                    help="do not run: replace README.md's benchmark section with <out-dir>/readme_table.md")
     p.add_argument("--force", action="store_true", help="with --update-readme: accept a --quick result")
+    p.add_argument("--rerender", action="store_true",
+                   help="do not run: render the reports again from <out-dir>/results.json with the stored "
+                        "search of bench/stated_figures.json folded in (no timing)")
     args = p.parse_args(argv)
+    if args.rerender:
+        from .report import rerender
+        rerender(args.out_dir)
+        return 0
     if args.update_readme:
         from .report import update_readme
         try:

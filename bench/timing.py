@@ -222,4 +222,12 @@ def fmt_err(x):
         return "-"
     if x == 0:
         return "0"
-    return f"{x:.1e}"
+    # rounded up: a stated error is never below the one measured
+    s = f"{x:.1e}"
+    if float(s) < x:
+        m, e = s.split("e")
+        m, e = round(float(m) + 0.1, 1), int(e)
+        if m >= 10.0:
+            m, e = 1.0, e + 1
+        s = f"{m:.1f}e{e:+03d}"
+    return s
