@@ -209,7 +209,7 @@ def test_materials_bounded(tmp_path):
     assert os.listdir(tmp_path) == []
 
 
-# --- item 5: Python errors name Python parameters ----------------------------------------------
+# --- Python errors name Python parameters -------------------------------------------------------
 
 def test_python_errors_name_python_parameters(tmp_path):
     imp = fastrest.Impact(fastrest.Material(2e11, 0.33, 1.12e9, rho=7800), 0.01)
