@@ -1,4 +1,4 @@
-"""Command line: ``fastrest e`` (the model for one impact, :mod:`fastrest._impact_cli`), ``build``,
+"""Command line: ``fastrest e`` (the model for one impact, in ``fastrest/_impact_cli.py``), ``build``,
 ``info``, ``warmup``, ``figures``, ``export`` (:mod:`fastrest.export.cli`).
 
 What a user sees: errors as ``fastrest COMMAND: error: ...`` (exit status 2 for bad input, 1 for a
