@@ -46,7 +46,8 @@ from collections import namedtuple
 import numpy as np
 
 from ._jit import jit
-from ._validation import as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu, real_scalar
+from ._validation import (as_float_array, check_bool, check_count, check_finite_positive, check_eps_y, check_nu,
+                          kernel_array, real_scalar)
 from .loading.jackson_green import W_SWITCH, area_exponent
 from . import loading as _loading
 from .loading import p_star_above, resolve as resolve_loading
@@ -85,7 +86,8 @@ def contact_force(law, state, w):
     -------
     float
         P* (-). NaN for NaN or infinite w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
-        the unloading model) or an unknown unloading model; the state is then set to NaN (the
+        the unloading model), a state whose w_max = state[0] is negative or NaN (no history of
+        this law) or an unknown unloading model; the state is then set to NaN (the
         contact's history is lost: every later call gives NaN until the row is zeroed). A jit
         kernel: it never raises.
 
@@ -125,7 +127,7 @@ def _force_step(model, eps_y, nu, w_end, rows, shift, base, loading, et_ratio, s
     (``rows`` may hold other materials' rows too: ``base`` places this material's)."""
     w = np.float64(w)  # integer and float32 interferences (the cell index reads float64 bits)
     w_max = state[0]
-    if w > w_max:  # virgin loading, on the JG law (P_table_forward's rule)
+    if w > w_max and w_max >= 0.0:  # virgin loading, on the JG law (P_table_forward's rule); w_max < 0: no history
         if w <= W_SWITCH:
             p = w * math.sqrt(w)
         elif w <= w_end:
@@ -699,7 +701,8 @@ class ContactLaw:
             Non-numbers.
         ValueError
             NaN or infinite interference, or one past the law's end (the message names it); a
-            ``state`` that is not a C-contiguous float64 array of shape (:data:`STATE_SIZE`,).
+            ``state`` that is not a writeable C-contiguous float64 array of shape
+            (:data:`STATE_SIZE`,), or no history of this law (as :meth:`dissipated_energy`).
 
         Notes
         -----
@@ -719,9 +722,14 @@ class ContactLaw:
             raise ValueError(f"interference must be finite; got {float(w[bad][0] * self.omega_c)!r}")
         if state is None:
             state = self.new_state()
-        elif not (isinstance(state, np.ndarray) and state.dtype == np.float64 and state.shape == (STATE_SIZE,)
-                  and state.flags.c_contiguous):
-            raise ValueError(f"state must be a float64 array of shape ({STATE_SIZE},) (ContactLaw.new_state())")
+        else:
+            if not (isinstance(state, np.ndarray) and state.dtype == np.float64 and state.shape == (STATE_SIZE,)
+                    and state.flags.c_contiguous):
+                raise ValueError(f"state must be a float64 array of shape ({STATE_SIZE},) (ContactLaw.new_state())")
+            if not state.flags.writeable:
+                raise ValueError("state is updated in place (the contact's history): it must be a writeable "
+                                 "array; got a read-only one (pass state.copy())")
+            self._check_history(state.reshape(1, STATE_SIZE), state.shape)
         out = np.empty(w.size)
         _force_path(self.data, state, w, out)
         if np.isnan(out).any():
@@ -781,18 +789,31 @@ class ContactLaw:
         if x.ndim == 0 or x.shape[-1] != STATE_SIZE:
             raise ValueError(f"state must have a last axis of {STATE_SIZE} values (ContactLaw.new_state()); "
                              f"got shape {x.shape}")
-        rows = np.ascontiguousarray(x, dtype=np.float64).reshape(-1, STATE_SIZE)
+        rows = kernel_array(x).reshape(-1, STATE_SIZE)  # a read-only state: copied, no new signature
+        self._check_history(rows, x.shape)
         out = np.empty(rows.shape[0])
         _dissipated_rows(self.data, rows, out)
         if np.isnan(out).any():
-            i = int(np.flatnonzero(np.isnan(out))[0])
-            where = "state" if x.ndim == 1 else f"state row {tuple(int(j) for j in np.unravel_index(i, x.shape[:-1]))}"
-            raise ValueError(f"{where} = {rows[i].tolist()} is no history of this law: w_max = state[0] must be "
-                             f"finite, >= 0 and <= the law's w_max = {self.w_max!r} (a NaN row: the contact's "
-                             "history was lost)")
+            self._refuse_history(rows, x.shape, int(np.flatnonzero(np.isnan(out))[0]))
         unit = 1.0 if self.omega_c == 1.0 and self.P_c == 1.0 else 0.4 * self.P_c * self.omega_c
         out *= unit
         return float(out[0]) if x.ndim == 1 else out.reshape(x.shape[:-1])
+
+    def _check_history(self, rows, shape):
+        """Refuse a state row that is no history of this law (:meth:`force` and
+        :meth:`dissipated_energy`, one rule): w_max = state[0] NaN, < 0 or past the law's w_max,
+        or P*(w_max) = state[1] NaN (the history was lost)."""
+        w_top, p_top = rows[:, 0], rows[:, 1]
+        bad = ~((w_top >= 0.0) & (w_top <= self.w_max) & (p_top == p_top))
+        if bad.any():
+            self._refuse_history(rows, shape, int(np.flatnonzero(bad)[0]))
+
+    def _refuse_history(self, rows, shape, i):
+        where = "state" if len(shape) == 1 else f"state row {tuple(int(j) for j in np.unravel_index(i, shape[:-1]))}"
+        raise ValueError(f"{where} = {rows[i].tolist()} is no history of this law: w_max = state[0] must be "
+                         f"finite, >= 0 and <= the law's w_max = {self.w_max!r} (in units of omega_c), and "
+                         "P*(w_max) = state[1] a number (a NaN row: the contact's history was lost; start "
+                         "again from ContactLaw.new_state())")
 
     def _full_limit(self):
         """The largest w* a law of this material, model and loading law could serve."""
