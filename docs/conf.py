@@ -1,14 +1,15 @@
 """Sphinx configuration of fastrest's documentation (``.ci/docs`` builds it with ``-W``).
 
-The user guide is Markdown (myst-parser); the API reference is generated at build time from the
-``__all__`` of every public module (no leading underscore in its dotted name): one page per module
-under ``api/generated/`` (not committed), each name documented once, where it is defined, and
-listed with a link wherever else it is exported.
+The user guide is Markdown (myst-parser). The API reference (``api/index.rst``) groups the public
+names in autosummary tables; autosummary writes one page per name under ``api/generated/`` (not
+committed) from the templates in ``_templates/autosummary``, and this file writes one page per
+public module (``api/generated/modules``). The public modules are listed once, in
+``stability.md`` (between its ``public-modules`` markers); the build fails unless the reference
+lists every name of their ``__all__`` exactly once and nothing else.
 """
+import ast
 import importlib
 import inspect
-import os
-import pkgutil
 import re
 import sys
 from pathlib import Path
@@ -27,6 +28,7 @@ version = release = fastrest.__version__
 extensions = [
     "myst_parser",
     "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
     "numpydoc",
 ]
@@ -71,146 +73,212 @@ html_theme_options = {
 html_show_sourcelink = False
 
 # ---------------------------------------------------------------------------------------------
-# The API reference, generated from ``__all__``.
+# fastrest.cuda needs numba-cuda (the `gpu` extra). The reference must not depend on the machine
+# that builds it: without numba-cuda the module is imported with numba-cuda mocked (its kernels
+# are then never compiled; its docstrings and signatures are plain Python).
 
-#: Modules left out of the reference: compatibility aliases of names documented elsewhere.
-# Not public although not underscored (docs/stability.md): a deprecated alias, the command line's
-# implementation (its public interface is the commands), and plumbing.
-SKIP_MODULES = {"fastrest.table_error", "fastrest.cli", "fastrest.export.cli", "fastrest.fastpath",
-                "fastrest.tables.probe", "fastrest.tables.hdf5_read"}
+try:
+    import fastrest.cuda  # noqa: E402,F401
+except ImportError:
+    from sphinx.ext.autodoc.mock import mock
+    with mock(["numba_cuda", "numba.cuda"]):
+        import fastrest.cuda  # noqa: E402,F401
+    print("fastrest docs: fastrest.cuda imported with numba-cuda mocked (not installed)")
 
-# Modules that need an optional extra (fastrest.cuda: numba-cuda, the `gpu` extra): in the
-# reference only where the extra is installed; docs/gpu.md describes them either way.
-OPTIONAL_MODULES = {"fastrest.cuda"}
+# ---------------------------------------------------------------------------------------------
+# The API reference: the public modules (stability.md), their names (api/index.rst), checked
+# against each other.
 
-GENERATED = DOCS / "api" / "generated"
+API = DOCS / "api"
+GENERATED = API / "generated"
 
 
 def public_modules():
-    """Dotted names of the public modules of fastrest that define ``__all__``, sorted."""
-    names = ["fastrest"] + [m.name for m in pkgutil.walk_packages(fastrest.__path__, "fastrest.")]
-    out = []
-    for name in sorted(set(names)):
-        if name in SKIP_MODULES or any(part.startswith("_") for part in name.split(".")):
+    """Dotted names of the public modules, in the order docs/stability.md lists them."""
+    text = (DOCS / "stability.md").read_text(encoding="utf-8")
+    m = re.search(r"<!-- public-modules:start -->(.*?)<!-- public-modules:end -->", text, re.S)
+    if m is None:
+        raise RuntimeError("docs/stability.md: no public-modules markers")
+    return list(dict.fromkeys(re.findall(r"`(fastrest(?:\.\w+)*)`", m.group(1))))
+
+
+PUBLIC = public_modules()
+
+
+def _attr(mod, name):
+    """``mod.name``, importing a submodule of that name if it is not an attribute yet."""
+    try:
+        return getattr(mod, name)
+    except AttributeError:
+        return importlib.import_module(f"{mod.__name__}.{name}")
+
+
+def _is_data(obj):
+    return not (inspect.ismodule(obj) or inspect.isclass(obj) or callable(obj))
+
+
+def data_home(modname, name, depth=0):
+    """(module, name) where the constant ``modname.name`` is assigned, following ``from x import``."""
+    mod = importlib.import_module(modname)
+    try:
+        tree = ast.parse(inspect.getsource(mod))
+    except (OSError, TypeError):
+        return modname, name
+    for node in tree.body:
+        targets = []
+        if isinstance(node, ast.Assign):
+            for t in node.targets:
+                targets += t.elts if isinstance(t, ast.Tuple) else [t]
+        elif isinstance(node, ast.AnnAssign):
+            targets = [node.target]
+        if any(isinstance(t, ast.Name) and t.id == name for t in targets):
+            return modname, name
+    for node in tree.body:
+        if isinstance(node, ast.ImportFrom) and depth < 10:
+            for alias in node.names:
+                if (alias.asname or alias.name) == name:
+                    base = modname if hasattr(mod, "__path__") else modname.rpartition(".")[0]
+                    for _ in range(max(node.level - 1, 0)):
+                        base = base.rpartition(".")[0]
+                    src = ".".join(p for p in (base if node.level else "", node.module or "") if p)
+                    return data_home(src, alias.name, depth + 1)
+    return modname, name
+
+
+def _key(modname, name, obj):
+    """One key per documented thing: the object for classes and functions, where it is assigned
+    for a constant (the same constant re-exported elsewhere is one entry)."""
+    return ("data",) + data_home(modname, name) if _is_data(obj) else ("obj", id(obj))
+
+
+def _split(fullname):
+    """(public module, name) of a dotted name, the module the longest public prefix."""
+    for mod in sorted(PUBLIC, key=len, reverse=True):
+        if fullname.startswith(mod + ".") and "." not in fullname[len(mod) + 1:]:
+            return mod, fullname[len(mod) + 1:]
+    return None, fullname
+
+
+def listed_names():
+    """Full names of the entries of api/index.rst's autosummary tables, in order."""
+    out, current, in_table = [], None, False
+    for line in (API / "index.rst").read_text(encoding="utf-8").splitlines():
+        m = re.match(r"\.\. currentmodule:: (\S+)", line)
+        if m:
+            current = m.group(1)
             continue
-        try:
-            mod = importlib.import_module(name)
-        except ImportError as exc:
-            if name in OPTIONAL_MODULES:   # its extra is not installed: documented without it
-                print(f"fastrest docs: {name} left out of the API reference ({exc})")
+        if line.startswith(".. autosummary::"):
+            in_table = True
+            continue
+        if in_table:
+            if not line.strip() or line.strip().startswith(":"):
                 continue
-            raise
-        if getattr(mod, "__all__", None) is not None:
-            out.append(name)
+            if not line.startswith(" "):
+                in_table = False
+                continue
+            name = line.strip()
+            full = name if name.startswith("fastrest.") else f"{current}.{name}"
+            out.append(full)
     return out
 
 
-def _defines(mod, name):
-    """Whether module ``mod`` itself defines ``name`` (def, class or assignment in its source)."""
-    try:
-        src = inspect.getsource(mod)
-    except (OSError, TypeError):
-        return False
-    return re.search(rf"^(def|class)\s+{re.escape(name)}\b|^{re.escape(name)}\b[^=\n]*=", src, re.M) is not None
+def check_reference():
+    """Every name of every public ``__all__`` listed once in api/index.rst, nothing else there;
+    returns {key: listed full name}."""
+    problems, homes = [], {}
+    for full in listed_names():
+        modname, name = _split(full)
+        if modname is None or name not in importlib.import_module(modname).__all__:
+            problems.append(f"{full}: listed but not in the __all__ of a public module")
+            continue
+        obj = _attr(importlib.import_module(modname), name)
+        key = _key(modname, name, obj)
+        if key in homes:
+            problems.append(f"{full}: listed twice (also as {homes[key]})")
+        homes[key] = full
+    for modname in PUBLIC:
+        mod = importlib.import_module(modname)
+        for name in mod.__all__:
+            obj = _attr(mod, name)
+            if inspect.ismodule(obj):
+                if obj.__name__ not in PUBLIC:
+                    problems.append(f"{modname}.{name}: exports module {obj.__name__}, not public (stability.md)")
+            elif _key(modname, name, obj) not in homes:
+                problems.append(f"{modname}.{name}: public (stability.md) but not in api/index.rst")
+    pages = re.findall(r"^   generated/modules/(\S+)$", (API / "index.rst").read_text(encoding="utf-8"), re.M)
+    if pages != PUBLIC:
+        problems.append(f"api/index.rst's module pages {pages} differ from stability.md's {PUBLIC}")
+    if problems:
+        raise RuntimeError("the API reference disagrees with the public API:\n  " + "\n  ".join(problems))
+    return homes
 
 
-def _kind(obj):
-    if inspect.ismodule(obj):
-        return "module"
-    if inspect.isclass(obj):
-        return "class"
-    if callable(obj):
-        return "function"
-    return "data"
+HOMES = check_reference()
+
+# Templates: plain classes (namedtuples, exceptions) without a members list; numba-compiled
+# functions, which autosummary takes for data, documented as functions.
+_OBJECTS = {full: _attr(importlib.import_module(_split(full)[0]), _split(full)[1]) for full in HOMES.values()}
+autosummary_generate = True
+autosummary_context = {
+    "plain_classes": sorted(f for f, o in _OBJECTS.items()
+                            if inspect.isclass(o) and issubclass(o, (tuple, BaseException))),
+    "function_like": sorted(f for f, o in _OBJECTS.items() if not inspect.isclass(o) and callable(o)),
+}
 
 
-def _key(n, obj):
-    """Objects are one entry whatever they are called; constants are one entry per name and value."""
-    return id(obj) if _kind(obj) != "data" else (n, repr(obj)[:200])
+def _summary_name(modname, name, obj):
+    """Where the reference documents ``modname.name``."""
+    return HOMES[_key(modname, name, obj)]
 
 
-def canonical_homes(modules):
-    """For each exported object, the one (module, name) documenting it: where it is defined (its
-    ``__module__`` and ``__name__``, or an assignment in the module's source for a constant), else
-    the first, most specific, module exporting it."""
-    homes = {}        # _key -> (module, name, defined_here)
-    exports = {}      # module -> [(name, obj)]
-    for m in modules:
-        mod = importlib.import_module(m)
-        exports[m] = [(n, getattr(mod, n)) for n in mod.__all__]
-    for m in sorted(modules, key=lambda m: (-m.count("."), m)):
-        mod = importlib.import_module(m)
-        for n, obj in exports[m]:
-            kind = _kind(obj)
-            if kind == "module":
-                continue
-            if kind == "data":
-                defined_here = _defines(mod, n)
-            else:
-                defined_here = getattr(obj, "__module__", None) == m and getattr(obj, "__name__", n) == n
-            key = _key(n, obj)
-            if key not in homes or (defined_here and not homes[key][2]):
-                homes[key] = (m, n, defined_here)
-    return exports, {k: v[:2] for k, v in homes.items()}
-
-
-def _summary(obj):
-    doc = inspect.getdoc(getattr(obj, "py_func", obj)) or ""
-    first = doc.strip().split("\n\n")[0].replace("\n", " ").strip()
-    return first
-
-
-def write_api(app=None):
-    """Write ``api/generated/<module>.rst`` for each public module and ``api/generated/modules.rst``."""
-    modules = public_modules()
-    exports, homes = canonical_homes(modules)
-    GENERATED.mkdir(parents=True, exist_ok=True)
+def write_module_pages(app=None):
+    """``api/generated/modules/<module>.rst``: the module's docstring and a table of its names."""
+    out = GENERATED / "modules"
+    out.mkdir(parents=True, exist_ok=True)
     written = set()
-    for m in modules:
-        lines = [m, "=" * len(m), "", f".. automodule:: {m}", "   :no-members:", ""]
-        here, elsewhere, submods = [], [], []
-        for n, obj in exports[m]:
-            kind = _kind(obj)
-            if kind == "module":
-                submods.append(obj.__name__)
-            elif homes[_key(n, obj)] == (m, n):
-                here.append((n, obj, kind))
-            else:
-                elsewhere.append((n, ".".join(homes[_key(n, obj)])))
-        if submods:
-            lines += ["Modules exported here: " + ", ".join(f":mod:`{s}`" for s in submods), ""]
-        if elsewhere:
-            lines += ["Also exported here (documented where they are defined):", ""]
-            lines += [f"* :py:obj:`{m}.{n} <{home}>`" for n, home in elsewhere]
-            lines += [""]
-        for n, obj, kind in here:
-            directive = {"class": "autoclass", "function": "autofunction", "data": "autodata"}[kind]
-            if kind == "function" and not inspect.isroutine(obj) and not hasattr(obj, "py_func"):
-                directive = "autodata"   # a callable instance (a registry entry, ...)
-            lines += [f".. {directive}:: {m}.{n}"]
-            if kind == "class":
-                if not issubclass(obj, (tuple, BaseException)):
-                    lines += ["   :members:"]
+    for modname in PUBLIC:
+        mod = importlib.import_module(modname)
+        lines = [modname, "=" * len(modname), "", f".. automodule:: {modname}", "   :no-members:", ""]
+        subs = [_attr(mod, n).__name__ for n in mod.__all__ if inspect.ismodule(_attr(mod, n))]
+        names = [(n, _attr(mod, n)) for n in mod.__all__ if not inspect.ismodule(_attr(mod, n))]
+        if subs:
+            lines += ["Modules: " + ", ".join(f":mod:`{s}`" for s in subs), ""]
+        if names:
+            lines += [f"Names exported by ``{modname}`` (each is documented once; a name exported by several",
+                      "modules links to its page):", "", ".. autosummary::", "   :nosignatures:", ""]
+            for n, o in names:
+                full = _summary_name(modname, n, o)
+                lines += [f"   {full[len(modname) + 1:]}" if _split(full)[0] == modname else f"   ~{full}"]
             lines += [""]
         text = "\n".join(lines)
-        path = GENERATED / f"{m}.rst"
+        path = out / f"{modname}.rst"
         if not path.exists() or path.read_text() != text:
             path.write_text(text)
         written.add(path.name)
-    index = ["Modules", "=======", "", ".. toctree::", "   :maxdepth: 1", ""]
-    index += [f"   {m}" for m in modules]
-    text = "\n".join(index) + "\n"
-    path = GENERATED / "modules.rst"
-    if not path.exists() or path.read_text() != text:
-        path.write_text(text)
-    written.add(path.name)
-    for stale in GENERATED.glob("*.rst"):
+    for stale in out.glob("*.rst"):
         if stale.name not in written:
             stale.unlink()
 
 
+def constant_docs(app, what, name, obj, options, lines):
+    """A constant documented where it is re-exported takes the ``#:`` comment of the module
+    that assigns it."""
+    if what not in ("data", "attribute") or any(ln.strip() for ln in lines):
+        return
+    modname, short = _split(name)
+    if modname is None:
+        return
+    from sphinx.pycode import ModuleAnalyzer
+    home, home_name = data_home(modname, short)
+    try:
+        docs = ModuleAnalyzer.for_module(home).find_attr_docs()
+    except Exception:
+        return
+    lines[:] = list(docs.get(("", home_name), []))
+
+
 def setup(app):
-    app.connect("builder-inited", write_api)
+    app.connect("builder-inited", write_module_pages)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -272,7 +340,16 @@ def resolve_alias(app, env, node, contnode):
     by_id, by_last = _documented(env)
     py = env.get_domain("py")
     found_internal = False
-    for path in _candidates(target, node.get("py:module"), node.get("py:class")):
+    candidates = _candidates(target, node.get("py:module"), node.get("py:class"))
+    page = node.get("refdoc", "")
+    if page.startswith("api/generated/") and "." not in target:   # a bare name in an object's
+        try:                                                        # docstring: its own module's
+            home = getattr(_lookup(page.rsplit("/", 1)[-1]), "__module__", None)
+        except Exception:
+            home = None
+        if isinstance(home, str):
+            candidates.append(f"{home}.{target}")
+    for path in candidates:
         try:
             obj = _lookup(path)
         except Exception:
@@ -307,16 +384,18 @@ def resolve_alias(app, env, node, contnode):
 def drop_type_docstrings(app, what, name, obj, options, lines):
     """A constant without a ``#:`` comment would show its value's docstring (ndarray's, int's, a
     namedtuple's class): a value's own ``__doc__`` never documents the constant, so drop it."""
-    if what in ("data", "attribute") and lines and isinstance(getattr(obj, "__doc__", None), str):
+    doc = getattr(obj, "__doc__", None)
+    if what in ("data", "attribute") and lines and isinstance(doc, str) and doc == getattr(type(obj), "__doc__", None):
         from sphinx.util.docstrings import prepare_docstring
-        own = [ln for ln in prepare_docstring(obj.__doc__) if ln.strip()]
+        own = [ln for ln in prepare_docstring(doc) if ln.strip()]
         if own and [ln for ln in lines if ln.strip()][:len(own)] == own:
             lines[:] = []
 
 
 def module_citations(app, what, name, obj, options, lines):
-    """A function citing ``[Wu]_`` defined in its module's docstring: numpydoc renamed the
-    module's citations (prefix from the module's name); point the reference there."""
+    """A function citing ``[Wu]_`` defined in a module's docstring: numpydoc renamed the module's
+    citations (prefix from the module's name); point the reference at the module page that
+    defines it (the module the reference lists the function under, else where it is defined)."""
     if what == "module":
         return
     import hashlib
@@ -325,13 +404,14 @@ def module_citations(app, what, name, obj, options, lines):
     cited = set(re.findall(r"\[([A-Za-z0-9_.-]+)\]_", text)) - set(re.findall(r"^\s*\.\. \[([^\]]+)\]", text, re.M))
     if not cited:
         return
-    mod_name = getattr(obj, "__module__", None) or name.rsplit(".", 1)[0]
-    mod = sys.modules.get(mod_name)
-    mod_doc = (mod.__doc__ or "") if mod else ""
-    prefix = "R" + hashlib.sha256(mod_name.encode("utf8")).hexdigest()[:HASH_LEN]
+    homes = [m for m in (_split(name)[0], getattr(obj, "__module__", None)) if m in PUBLIC]
     for c in cited:
-        if re.search(rf"^\s*\.\. \[{re.escape(c)}\]", mod_doc, re.M):
-            lines[:] = [ln.replace(f"[{c}]_", f"[{prefix}-{c}]_") for ln in lines]
+        for mod_name in homes:
+            mod_doc = sys.modules[mod_name].__doc__ or ""
+            if re.search(rf"^\s*\.\. \[{re.escape(c)}\]", mod_doc, re.M):
+                prefix = "R" + hashlib.sha256(mod_name.encode("utf8")).hexdigest()[:HASH_LEN]
+                lines[:] = [ln.replace(f"[{c}]_", f"[{prefix}-{c}]_") for ln in lines]
+                break
 
 
 _setup_api = setup
@@ -341,4 +421,5 @@ def setup(app):  # noqa: F811
     _setup_api(app)
     app.connect("missing-reference", resolve_alias)
     app.connect("autodoc-process-docstring", drop_type_docstrings, priority=400)
+    app.connect("autodoc-process-docstring", constant_docs, priority=450)
     app.connect("autodoc-process-docstring", module_citations, priority=600)   # after numpydoc

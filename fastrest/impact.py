@@ -43,6 +43,9 @@ class Impact:
     rigid flat (section 2.1). The material that yields first (smaller C(nu) Sy) supplies nu, Sy and C
     (JGM after eq 5), and eps_y = Sy / E' (eq 11).
 
+    Sphere on sphere: use :meth:`Impact.two_spheres`, which sets R_eff = R1 R2 / (R1 + R2) and
+    the reduced mass m1 m2 / (m1 + m2) (standard two-body reduction; JGM do not state it).
+
     Parameters
     ----------
     sphere : Material
@@ -57,9 +60,6 @@ class Impact:
     loading : {None, "jackson-green", "ghaednia"}, optional
         Loading law (:mod:`fastrest.loading`), keyword-only. None (default): Jackson-Green where the
         yielding body has ``Et = 0``, Ghaednia et al. (2019) where it hardens (``Et > 0``).
-
-    Sphere on sphere: use :meth:`Impact.two_spheres`, which sets R_eff = R1 R2 / (R1 + R2) and
-    the reduced mass m1 m2 / (m1 + m2) (standard two-body reduction; JGM do not state it).
 
     Attributes
     ----------

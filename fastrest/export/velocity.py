@@ -44,9 +44,11 @@ __all__ = ["TOL_MIN", "MAX_ROWS", "MAX_PAIRS", "MAX_PAIRS_BYTES", "Pair", "pair_
 #: Smallest tol: the curves that place the rows are ~1e-13 accurate, the direct solver's
 #: Newton step tolerance is 1e-9 in ln w (its e to ~1e-12); 1e-9 keeps the check meaningful.
 TOL_MIN = 1e-9
+#: Most speed rows of one pair's table (a tol needing more is refused).
 MAX_ROWS = 200000
 #: Most pairs in one export, and the largest pairs file read (a hostile file is refused, not read).
 MAX_PAIRS = 1000
+#: Largest pairs file read (bytes).
 MAX_PAIRS_BYTES = 1 << 20
 CHECKS_PER_INTERVAL = 15
 PAIR_KEYS = ("name", "E", "nu", "Sy", "R", "rho", "mass", "Et", "flat_E", "flat_nu", "flat_Sy", "flat_Et", "V_max")

@@ -8,6 +8,7 @@ __all__ = ["TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES", "COLOURS", "LABELS", "ne
 
 #: JGM Table 1 benchmark (eps_y = 0.005, nu = 0.33), used by Figs 2-6 unless stated otherwise.
 TABLE1_EPS_Y = 0.005
+#: Poisson's ratio of the JGM Table 1 benchmark.
 TABLE1_NU = 0.33
 #: eps_y values of Figs 2, 3 and 5 (the paper's validated range is 0.0005-0.01).
 EPS_Y_SERIES = (0.0005, 0.001, 0.002, 0.005, 0.01)

@@ -24,7 +24,7 @@ TableData = namedtuple("TableData", ["map_rate", "xi0", "nu0", "inv_h_nu", "n_nu
                       module="fastrest.tables")  # its public home: pickles and Numba's cache refer to it there
 TableData.__doc__ = """Numba-friendly data of a :class:`~fastrest.tables.Table` (``table.data``), for :mod:`fastrest.jit`.
 
-A namedtuple of floats, ints and contiguous arrays, built only by :func:`table_data` (by keyword).
+A namedtuple of floats, ints and contiguous arrays, built only inside fastrest (by keyword).
 Pass it into your own jitted code and call ``fastrest.jit.e_table(data, v1_star, eps_y, nu, JCG)``.
 The kernels read its arrays through raw data pointers (no reference counting per point,
 `python -m bench.stencil`), so the arrays must outlive the call: pass the data from Python as an

@@ -40,7 +40,7 @@ _QUANTITY_PARAMS = """
         v1_star : float or array_like
             Normalised impact speed V1* = V1/V_c (-), JGM eq (30); >= 0 (V1* <= 1: elastic).
         eps_y : float or array_like
-            Sy/E' (-), JGM eq (11); within the table's range (``grid["eps_y_min"]``..``["eps_y_max"]``).
+            Sy/E' (-), JGM eq (11); within the table's range (``grid["eps_y_min"]`` to ``grid["eps_y_max"]``).
         nu : float or array_like
             Poisson's ratio of the yielding material (-); within the table's range.{extra}
 
