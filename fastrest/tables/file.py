@@ -253,7 +253,8 @@ def _check_header(data, path):
         if len(block) < USERBLOCK or pad.strip(b"\0") or len(lines) != 3 or lines[2]:
             raise ValueError
         (k1, size), (k2, digest) = (line.decode("ascii").split(" ") for line in lines[:2])
-        if (k1, k2) != ("size", "sha256") or not size.isdigit() or len(digest) != 64:
+        if ((k1, k2) != ("size", "sha256") or not size.isdigit() or size.startswith("0")  # no leading zeros
+                or len(digest) != 64 or digest.strip("0123456789abcdef")):  # lowercase hex
             raise ValueError
         size = int(size)
     except ValueError:
