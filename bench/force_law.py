@@ -244,8 +244,8 @@ def section3(conv, cfg):
         L.append(f"| {n} | {cell(True, j)} | {cell(False, j)} | {where(True, j)} | {where(False, j)} |")
     L += ["", "Excluded above (every other speed is in): speeds just below the switch speed 1.9^1.25 whose "
           "time-stepped peak passes w* = 1.9 while the exact one stays below it; there e is off by the "
-          "model's jump in e at the switch. How far below the switch speed that band reached (relative) and "
-          "the error in it:", "", "| N | band, located | error in it | band, not located | error in it |",
+          "model's jump in e at the switch. How far below the switch speed the band reached (relative: the "
+          "farthest of the speeds (1 - 10^-k) x 1.9^1.25 that fell in it) and the error in it:", "", "| N | band, located | error in it | band, not located | error in it |",
           "|---|---|---|---|---|"]
     for j, n in enumerate(cfg["steps"]):
         bt, bf = conv["band"][True], conv["band"][False]
