@@ -133,4 +133,5 @@ def test_elastic_range_is_gridded(grid_file):
             elastic = v1 <= 1.0
             assert np.all(ds[f"e_{model}"].values[elastic] == 1.0)
             assert np.all(ds[f"loss_{model}"].values[elastic] == 0.0)
-        assert np.array_equal(ds.omega_m.values[elastic, 0, 0], v1[elastic] ** 0.8)
+        # one pow each: the table kernel's (libm) and NumPy's (its own SIMD kernel on some CPUs)
+        np.testing.assert_allclose(ds.omega_m.values[elastic, 0, 0], v1[elastic] ** 0.8, rtol=5e-16, atol=0)

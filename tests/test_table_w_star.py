@@ -44,7 +44,8 @@ def test_loading_energy_matches_quadrature_over_the_domain():
     W_ref = fastrest.W_star(w, e, nu)
     assert np.all(np.abs(W - W_ref) <= TOL_W_STAR * np.maximum(np.abs(W_ref), 1.0) * 1.25)
     hertz = w <= 1.9
-    assert np.array_equal(W[hertz], 1.0 - w[hertz] ** 2.5)
+    # one pow each: the kernel's (libm) and NumPy's (its own SIMD kernel on some CPUs), an ulp or two apart
+    assert np.all(np.abs(W[hertz] - (1.0 - w[hertz] ** 2.5)) <= 5e-16)
     assert t.W_star(1.0, 0.005, 0.33) == 0.0
 
 
