@@ -30,6 +30,8 @@ import os
 import stat
 import tempfile
 
+from .temp_files import remove_stale_temps
+
 __all__ = ["MAX_FILE_BYTES", "USERBLOCK", "TableFileError", "check_path", "check_target", "check_target_dir",
            "header", "new_file_mode", "read_bounded", "replace_files",
            "read_verified", "write_atomic"]
@@ -472,6 +474,13 @@ def replace_files(contents: Mapping[Any, bytes | memoryview], name: str = "path"
         As :func:`check_target`; OSError naming the file on any write failure (disk full, I/O
         error). The temporary files are then removed and the targets untouched.
 
+    Notes
+    -----
+    A process killed between creating a temporary file and its rename leaves the file
+    (``.<name>.XXXXXXXX.tmp`` beside the target); the next write to the same target removes such
+    files once they are :data:`~fastrest.tables.temp_files.STALE_TEMP_SECONDS` old
+    (:func:`~fastrest.tables.temp_files.remove_stale_temps`).
+
     Examples
     --------
     >>> import tempfile, os
@@ -481,6 +490,8 @@ def replace_files(contents: Mapping[Any, bytes | memoryview], name: str = "path"
     ['a.txt']
     """
     paths = [check_target(p, name, what) for p in contents]
+    for path in paths:
+        remove_stale_temps(path)  # left by a writer killed mid-write (temp_files.STALE_TEMP_SECONDS)
     temps = {}
     try:
         for path, data in zip(paths, contents.values()):

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 import os
-import warnings
 from pathlib import Path
 
-from .._validation import real_scalar
+from .._validation import real_scalar, warn
 from .._deprecation import keyword_only
 from . import error
 from .accuracy import warn_if_inaccurate
@@ -392,6 +391,6 @@ def cached_table(grid: dict[str, Any] | None = None, *, progress: Any = None, to
             # a FIFO, device or directory in the file's place is refused (OSError), never replaced
             check_target(path, "grid", "the cached table")
             # a damaged cache entry is rebuilt, not re-raised on every call
-            warnings.warn(f"rebuilding the cached table: {exc}", RuntimeWarning, stacklevel=2)
+            warn(f"rebuilding the cached table: {exc}", RuntimeWarning)  # the caller's line
     build(path, g, progress=progress, tol=tol)
     return load_table(path, tol=tol)
