@@ -48,6 +48,7 @@ STORED_VALUES = (
     "tests/test_export_grid.py::test_elastic_range_is_gridded",
     "tests/test_docstrings.py",
     "tests/test_tables_docs.py",
+    "tests/test_stated_figures.py",
 )
 
 
