@@ -126,8 +126,8 @@ def cost(cfg, log):
     return t, frac, imp
 
 
-#: Speeds of the time-step table besides the log-uniform and switch-region grids: the old sample and
-#: the worst point an earlier, denser search found (Brake, eps_y = 0.0005, nu = 0.2, N = 1000, plain).
+#: Speeds of the time-step table besides the log-uniform and switch-region grids: a coarse sample and
+#: a known worst point (Brake, eps_y = 0.0005, nu = 0.2, N = 1000, plain).
 FIXED_SPEEDS = (1.01, 1.5, 2.2, 2.3, 5.0, 40.0, 3.207520047637879)
 
 

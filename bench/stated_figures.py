@@ -49,7 +49,7 @@ REPO = HERE.parent
 NAMES = ("jcg", "etsion", "brake")
 E0, E1, N0, N1 = 0.0005, 0.01, 0.2, 0.45
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-#: Points found by earlier searches, always evaluated: (V1*, eps_y, nu) per part, with the model.
+#: Known worst points (these searches' and independent ones'), always evaluated: (V1*, eps_y, nu) per part, with the model.
 KNOWN = {
     "curve": [(808.0595551676569, 0.01, 0.45, "etsion"), (2.2812630427249756, 0.0005, 0.2, "jcg"),
               (808.4129525336591, 0.01, 0.45, "jcg"), (2.281713008689937, 0.01, 0.2, "jcg")],

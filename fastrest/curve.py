@@ -363,7 +363,7 @@ def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | Non
     Curve
         ``.e(v)``, ``.omega_m(v)``, ``.loss(v)`` at V1* in [0, v_max] (broadcast; ValueError past
         v_max), ``.v_max``, and ``.data`` for :mod:`fastrest.jit`. Accuracy against the direct
-        solver: ~1e-13 relative for e and w_m*, 3.4e-12 for 1 - e^2 (bench/RESULTS.md).
+        solver: 1.1e-13 relative for e and w_m*, 3.5e-12 for 1 - e^2 (bench/STATED_FIGURES.md).
 
     Raises
     ------

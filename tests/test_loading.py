@@ -73,7 +73,8 @@ def test_p_star_and_area_match_the_reference(h):
 @pytest.mark.parametrize("h", [1e-3, 0.05, 0.3])
 def test_e_matches_the_independent_slow_path(h):
     """w_m*, e and 1 - e^2 of the direct solver against quadrature + root find at 40 digits
-    (measured worst: 6.7e-16 on w_m* and e, 6.3e-14 on 1 - e^2 at V1* = 2.5 where it is small)."""
+    (up to 6.7e-14 on a 1 - e^2 near 0.001 just above the switch; the stated figures and the worst
+    points known: tests/test_stated_figures.py)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", fastrest.ValidityWarning)  # JCG/Etsion with hardening
         for eps, nu in ((0.005, 0.33), (0.0005, 0.2)):
