@@ -164,3 +164,17 @@ def test_bench_report_states_the_worst_of_sample_and_search(tmp_path):
     assert ce["loss_jcg"]["max_rel_error"] == 5e-14  # 1 - e^2: JCG's (relative) only, the sample's larger here
     by = {m["key"]: m for m in R["speed_error"]["methods"]}
     assert by["curve_5"]["error"] == 1e-13 and by["direct"]["error"] == 2e-15
+
+
+@pytest.mark.slow
+def test_time_step_search_covers_the_switch_region_and_reports_the_band():
+    from bench import force_law
+
+    cfg = dict(steps=[20], n_log=3, n_switch=4, refine=3, starts=1)
+    vs = force_law.speeds(1000.0, cfg["n_log"], cfg["n_switch"])
+    assert vs[-1] == 1000.0 and 3.207520047637879 in vs
+    assert sum(2.23 < v <= 3.5 for v in vs) >= cfg["n_switch"]
+    conv = force_law.convergence(cfg, lambda *a: None)
+    for locate in (True, False):
+        assert TIME_STEP[20][0 if locate else 1] >= conv[locate][0] > 0
+        assert conv["band"][locate]["width"][0] > 0  # a speed below the switch whose stepped peak passed 1.9
