@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from typing import Any, cast
+import warnings
 
 import numba as nb
 from llvmlite import ir
@@ -19,7 +20,11 @@ __all__ = ["jit", "compiled_entry", "mul_rn", "is_cuda", "fmul_rn"]
 
 def jit(fn: Callable[..., Any] | None = None, *, inline: bool = False, parallel: bool = False) -> Any:
     """``numba.njit(cache=True)`` with fastrest's policy; ``inline=True`` inlines the kernel into
-    its callers' loops (Numba IR inlining), ``parallel=True`` enables ``prange``."""
+    its callers' loops (Numba IR inlining), ``parallel=True`` enables ``prange``.
+
+    Where Numba finds no writable cache directory (a read-only install without a writable HOME or
+    ``NUMBA_CACHE_DIR``), kernels are compiled without on-disk caching, with one RuntimeWarning
+    (:data:`NO_CACHE_WARNING`) per process."""
     # Typed ``Any``: a kernel's types are Numba's, inferred from each call, so mypy treats the
     # compiled dispatchers (and the functions they were made from) as untyped.
     opts: dict[str, Any] = dict(cache=True)
@@ -29,9 +34,27 @@ def jit(fn: Callable[..., Any] | None = None, *, inline: bool = False, parallel:
         opts["parallel"] = True
 
     def wrap(f: Callable[..., Any]) -> Any:
-        return nb.njit(**opts)(f)
+        if not _CACHING[0]:
+            return nb.njit(**{k: v for k, v in opts.items() if k != "cache"})(f)
+        try:
+            return nb.njit(**opts)(f)
+        except RuntimeError as exc:  # numba.core.caching: "cannot cache function ...: no locator available"
+            if "no locator available" not in str(exc):
+                raise
+            _CACHING[0] = False
+            warnings.warn(NO_CACHE_WARNING, RuntimeWarning, stacklevel=2)
+            return nb.njit(**{k: v for k, v in opts.items() if k != "cache"})(f)
 
     return wrap if fn is None else wrap(fn)
+
+
+#: The one warning of a process where Numba finds no writable cache directory for fastrest.
+NO_CACHE_WARNING = ("fastrest: Numba cannot cache compiled kernels here (no writable directory: the package's "
+                    "__pycache__, NUMBA_CACHE_DIR and the user cache directory under HOME are all unwritable); "
+                    "kernels are compiled again in every process (seconds per function). Set NUMBA_CACHE_DIR "
+                    "to a writable directory to cache them.")
+#: [False] once a kernel could not be cached: the rest are compiled without caching, warned once.
+_CACHING = [True]
 
 
 def compiled_entry(kernel: Any, sig: tuple[Any, ...]) -> Any:
