@@ -60,12 +60,54 @@ from .scene import material_index
 from . import unloading as _unloading
 from .unloading import elastic
 
-__all__ = ["STATE_SIZE", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time", "StackedLaws",
+__all__ = ["STATE_SIZE", "MAX_CONTACTS", "check_state_count", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time", "StackedLaws",
            "stack_laws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked"]
 
 #: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res*, and
 #: delta = w_max - w_res* (0 until the contact first unloads from w_max).
 STATE_SIZE = 4
+#: Most contacts :meth:`ContactLaw.new_state` allocates at once (32 GB of history rows).
+MAX_CONTACTS = 10**9
+
+
+def check_state_count(n: object, free_bytes: int | None = None, where: str = "in memory") -> int:
+    """``n`` as a number of contacts whose history rows (:data:`STATE_SIZE` float64 each) fit,
+    checked before anything is allocated (:meth:`ContactLaw.new_state`, ``fastrest.cuda.new_state``).
+
+    Parameters
+    ----------
+    n : int
+        Number of contacts, a whole number >= 0: at most :data:`MAX_CONTACTS` without
+        ``free_bytes``, else as many as fit in ``free_bytes``.
+    free_bytes : int, optional
+        Bytes available (a GPU's free memory); None: host memory, at most ``MAX_CONTACTS`` rows.
+    where : str
+        Where the rows go, for the message ("on the GPU").
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    TypeError
+        ``n`` is not a number.
+    ValueError
+        ``n`` is not a whole number >= 0, or its rows need more than ``free_bytes`` (or more than
+        ``MAX_CONTACTS`` rows without it); the message names n and the bytes.
+    """
+    try:
+        n = check_count(n, "n", 0, 2**1024)  # a whole number >= 0 (any float); then the bytes its rows need
+    except ValueError:
+        raise ValueError(f"n (number of contacts) must be a whole number >= 0; got {n!r}") from None
+    need = STATE_SIZE * 8
+    if free_bytes is None and n > MAX_CONTACTS:
+        raise ValueError(f"n = {n} contacts need {n * need} bytes of history rows ({need} bytes each); at "
+                         f"most n = {MAX_CONTACTS} ({MAX_CONTACTS * need} bytes) are allocated at once")
+    if free_bytes is not None and n * need > free_bytes:
+        raise ValueError(f"n = {n} contacts need {n * need} bytes of history rows ({need} bytes each), more "
+                         f"than the {free_bytes} bytes free {where}")
+    return n
 
 
 @jit(inline=True)
@@ -676,7 +718,7 @@ class ContactLaw:
         >>> law.new_state(), law.new_state(3).shape
         (array([0., 0., 0., 0.]), (3, 4))
         """
-        return np.zeros(STATE_SIZE if n is None else (check_count(n, "n", 0, 10**9), STATE_SIZE))
+        return np.zeros(STATE_SIZE if n is None else (check_state_count(n), STATE_SIZE))
 
     def force(self, interference: ArrayLike, state: NDArray[np.float64] | None = None) -> float | NDArray[np.float64]:
         """Forces along a path of interferences in time order, from a virgin contact.

@@ -16,7 +16,7 @@ except ImportError as err:  # pragma: no cover - exercised in a subprocess by te
 
 from .. import jit as _frj
 from ..curve_data import CurveData
-from ..force_law import STATE_SIZE, StackedLaws
+from ..force_law import STATE_SIZE, StackedLaws, check_state_count
 from ..forward import ForwardData
 from ..scene import SceneData
 from ..tables import TableData
@@ -129,7 +129,9 @@ def new_state(n: int, *, stream: Any = 0) -> Any:
     TypeError
         ``n`` is not an integer.
     ValueError
-        ``n`` < 0.
+        ``n`` < 0, or its rows (32 bytes each) larger than the GPU's free memory (the message
+        names n and the bytes; under the simulator, more than
+        :data:`fastrest.force_law.MAX_CONTACTS` rows), checked before anything is allocated.
 
     Examples
     --------
@@ -139,9 +141,18 @@ def new_state(n: int, *, stream: Any = 0) -> Any:
     """
     if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)):
         raise TypeError(f"n must be an integer number of contacts, got {type(n).__name__}")
-    if n < 0:
-        raise ValueError(f"n must be >= 0, got {n}")
-    return cuda.to_device(np.zeros((int(n), STATE_SIZE)), stream=stream)
+    n = check_state_count(n, _free_device_bytes(), "on the GPU")  # before any allocation
+    return cuda.to_device(np.zeros((n, STATE_SIZE)), stream=stream)
+
+
+def _free_device_bytes():
+    """Free memory of the current GPU (bytes); None where it cannot be asked (the simulator)."""
+    if SIMULATOR:
+        return None
+    try:
+        return int(cuda.current_context().get_memory_info()[0])
+    except Exception:  # no usable GPU: the allocation that follows raises numba-cuda's own error
+        return None
 
 
 # --- argument checks --------------------------------------------------------------------------
