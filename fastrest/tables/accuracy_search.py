@@ -47,8 +47,8 @@ SIGN_CHANGE_FLOOR = 0.1
 #: Local search (:func:`climb`): distinct humps per quantity it starts from, the step
 #: (fraction of the first) at which it stops, and its largest number of rounds.
 LOCAL_STARTS = 16
-LOCAL_MIN_STEP = 2.0**-14
-LOCAL_ITERATIONS = 80
+LOCAL_MIN_STEP = 2.0**-20
+LOCAL_ITERATIONS = 120
 #: Starts of :func:`search_starts` on one ridge: the same V1* cell and xi interval, or nu interval.
 RIDGE_STARTS = 3
 #: Per quantity, the V1* cells (the worst of the first sample) that get a material lattice.
