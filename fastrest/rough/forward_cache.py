@@ -125,7 +125,8 @@ class ForwardCache:
         where : callable
             ``where(k)``: text naming impact k (its V1 and M), for messages.
         note : callable, optional
-            ``note(need)``: text added to the message.
+            ``note(k)``: text added to the message of impact k; with it, the message names the
+            model's end rather than the solver's w* (a statistical surface's trial point).
 
         Returns
         -------
@@ -151,10 +152,11 @@ class ForwardCache:
             w_need = float(out[1, need].max())
             if data.w_max >= lim:  # the model's range ends first
                 k = int(np.flatnonzero(need)[0])
-                what = interference_limit_message(max(w_need, lim * (1 + 1e-15)), self.eps_y, self.nu,
-                                                  extrapolate)
+                # a statistical solver's w* is a trial point's, not the impact's (its note says more)
+                what = interference_limit_message(lim * (1 + 1e-15) if note else max(w_need, lim * (1 + 1e-15)),
+                                                  self.eps_y, self.nu, extrapolate)
                 raise ValueError(f"the impact at {where(k)} drives summits to a w* that {what}"
-                                 + (note(w_need) if note else ""))
+                                 + (note(k) if note else ""))
             data = self.get(unloading, w_max=min(lim, max(1.25 * w_need, 2.0 * data.w_max)),
                             extrapolate=extrapolate)
         if np.any(out[0] != OK):

@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 from numpy.typing import ArrayLike, NDArray
+import math
+
 import numpy as np
 from numba import prange
 
@@ -311,3 +313,59 @@ def solve_impacts(data: Any, g: Any, energy: NDArray[np.float64], zs0: NDArray[n
     out = np.zeros((8, energy.size))
     _run(energy.size, _gw_impacts_array, _gw_impacts_serial, data, g, energy, zs0, w_model, out)
     return out
+
+
+def capacity_note(data: Any, g: Any, w_end: float, sigma: float, omega_c: float, R_a: float, U_c: float,
+                  n_summits: float, v: float, M: float) -> str:
+    """What a statistical surface can absorb before its tallest summits pass the law's end, for
+    the message of an impact that drives them past it (text that follows that message).
+
+    Parameters
+    ----------
+    data : fastrest.forward.ForwardData
+        The summit's forward table, up to at least ``w_end``.
+    g : GWData
+        The surface's height statistics.
+    w_end : float
+        w* (-) where the law (or what the impact may use of it) ends.
+    sigma, omega_c, R_a : float
+        Standard deviation of the summit heights, one summit's critical interference and the
+        summit radius (m).
+    U_c : float
+        One summit's critical energy (J).
+    n_summits : float
+        N = eta A_n (-).
+    v, M : float
+        The impact's speed (m/s) and mass (kg).
+
+    Returns
+    -------
+    str
+        The energy the surface absorbs with the flat at the lowest position whose integrated
+        heights stay within ``w_end`` (:func:`~fastrest.rough.expectations.zs_covered_kernel`),
+        the largest V1 at this M (and M at this V1) below it, and what to change in the inputs.
+    """
+    zs = zs_covered_kernel(g, w_end)
+    e_f, _ = gw_jg_sums_kernel(data, g, zs, w_end)
+    cap_j = float(n_summits) * float(e_f) * U_c
+    rho = sigma / omega_c
+    reach = float(zs_top_kernel(g, 0.0))  # integrated heights above the flat at the mean height (/ sigma)
+    how = ("the Gaussian up to where its tail is negligible" if g.kind == 0 else "the pdf up to its support's top")
+    text = (f". The summit heights spread with sigma = {sigma:.4g} m = {rho:.4g} omega_c (omega_c = {omega_c:.4g} m, "
+            f"one summit's critical interference); the model integrates {how}, {reach:.3g} sigma above the flat "
+            f"when the flat is at the mean summit height. The surface absorbs at most {cap_j:.4g} J before its "
+            f"tallest integrated summits reach the law's end, w* = {w_end:.6g} (an interference of "
+            f"{w_end * omega_c:.4g} m); this impact brings (1/2) M V1^2 = {0.5 * M * v * v:.4g} J")
+    if cap_j > 0.0:
+        text += (f": V1 must be below {math.sqrt(2.0 * cap_j / M):.4g} m/s at this M (M below "
+                 f"{2.0 * cap_j / v**2:.4g} kg at this V1)")
+    rho_max = w_end / reach
+    if zs > 0.0 and reach > 0.0:  # even the flat at the mean height is past the law: the surface is the problem
+        text += (f". The flat can reach the mean summit height only with sigma/omega_c <= {rho_max:.4g}: sigma <= "
+                 f"{rho_max * omega_c:.4g} m at R_a = {R_a:.4g} m, or R_a >= {R_a * rho / rho_max:.4g} m at this "
+                 "sigma (omega_c grows in proportion to R_a)")
+    else:
+        text += ". For harder impacts use a smaller sigma or a larger R_a (omega_c grows in proportion to R_a)"
+    return text + ("; or explicit heights (heights=...)" if g.kind else
+                   "; or explicit heights (heights=...), or a pdf of bounded support "
+                   "(GreenwoodWilliamson(pdf=..., support=...)), which the model does not extend past its support")

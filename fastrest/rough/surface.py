@@ -432,13 +432,18 @@ class RoughSurface:
         """:meth:`ForwardCache.solve` with this surface's messages."""
         note = None
         if self.kind == "statistical":
-            def note(need):
-                return (f". The surface has N = eta A_n = {self.n_summits:.6g} summits; its height distribution "
-                        f"(sigma = {self.sigma!r} m) is integrated until its tail is negligible (here up to "
-                        f"w* = {need:.4g}); a pdf with bounded support (GreenwoodWilliamson(pdf=..., "
-                        "support=...)) truncates it")
+            def note(k):
+                return self._capacity_note(energy[k], M, unloading, extrapolate)
         return self._tables.solve(run, w_guess, unloading, extrapolate,
                                   lambda k: f"V1 = {self._speed(energy[k], M)!r} m/s (M = {M!r} kg)", note)
+
+    def _capacity_note(self, energy, M, unloading, extrapolate):
+        """What the statistical surface absorbs before its tallest integrated summits pass the
+        law's end, the largest V1 (and M) below it, and what to change (text for messages)."""
+        w_end = self._tables.limit(extrapolate)
+        data = self._tables.get(unloading, w_max=w_end, extrapolate=extrapolate)
+        return statistical.capacity_note(data, self._gwdata, w_end, self.sigma, self.omega_c, self.R_a, self.U_c,
+                                         self.n_summits, self._speed(energy, M), M)
 
     def _solve_explicit(self, e_hi, e_lo, unloading, extrapolate, M):
         h = self._h
@@ -460,9 +465,7 @@ class RoughSurface:
             k = int(np.flatnonzero(hz[0] == NEEDS_TABLE)[0])
             raise ValueError(f"the impact at V1 = {self._speed(energy[k], M)!r} m/s (M = {M!r} kg) drives "
                              f"summits to a w* that {interference_limit_message(w_end * 1.5, self.eps_y, self.nu, True)}"
-                             f". The height distribution (sigma = {self.sigma!r} m) is integrated until its tail "
-                             "is negligible; a pdf with bounded support (GreenwoodWilliamson(pdf=..., "
-                             "support=...)) truncates it")
+                             + self._capacity_note(energy[k], M, unloading, extrapolate))
         if np.any(hz[0] != OK):
             raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
         zs0 = hz[1].copy()
