@@ -1,9 +1,10 @@
 """Sphinx configuration of fastrest's documentation (``.ci/docs`` builds it with ``-W``).
 
-The user guide is Markdown (myst-parser). The API reference (``api/index.rst``) groups the public
-names in autosummary tables; autosummary writes one page per name under ``api/generated/`` (not
-committed) from the templates in ``_templates/autosummary``, and this file writes one page per
-public module (``api/generated/modules``). The public modules are listed once, in
+The user guide is Markdown (myst-parser). The API reference (``api/index.rst``) has one page per
+group of public names (``api/<group>.rst``), each with autosummary tables; autosummary writes one
+page per name under ``api/generated/`` (not committed) from the templates in
+``_templates/autosummary``, and this file writes one page per public module
+(``api/generated/modules``). The public modules are listed once, in
 ``stability.md`` (between its ``public-modules`` markers); the build fails unless the reference
 lists every name of their ``__all__`` exactly once and nothing else.
 """
@@ -86,7 +87,7 @@ except ImportError:
     print("fastrest docs: fastrest.cuda imported with numba-cuda mocked (not installed)")
 
 # ---------------------------------------------------------------------------------------------
-# The API reference: the public modules (stability.md), their names (api/index.rst), checked
+# The API reference: the public modules (stability.md), their names (api/<group>.rst), checked
 # against each other.
 
 API = DOCS / "api"
@@ -160,9 +161,17 @@ def _split(fullname):
 
 
 def listed_names():
-    """Full names of the entries of api/index.rst's autosummary tables, in order."""
+    """Full names of the entries of the autosummary tables of the reference's group pages
+    (``api/*.rst``), in order."""
+    out = []
+    for page in sorted(API.glob("*.rst")):
+        out += _listed_in(page)
+    return out
+
+
+def _listed_in(page):
     out, current, in_table = [], None, False
-    for line in (API / "index.rst").read_text(encoding="utf-8").splitlines():
+    for line in page.read_text(encoding="utf-8").splitlines():
         m = re.match(r"\.\. currentmodule:: (\S+)", line)
         if m:
             current = m.group(1)
@@ -183,7 +192,7 @@ def listed_names():
 
 
 def check_reference():
-    """Every name of every public ``__all__`` listed once in api/index.rst, nothing else there;
+    """Every name of every public ``__all__`` listed once in the tables of api/*.rst, nothing else;
     returns {key: listed full name}."""
     problems, homes = [], {}
     for full in listed_names():
@@ -204,7 +213,7 @@ def check_reference():
                 if obj.__name__ not in PUBLIC:
                     problems.append(f"{modname}.{name}: exports module {obj.__name__}, not public (stability.md)")
             elif _key(modname, name, obj) not in homes:
-                problems.append(f"{modname}.{name}: public (stability.md) but not in api/index.rst")
+                problems.append(f"{modname}.{name}: public (stability.md) but in no table of docs/api/*.rst")
     pages = re.findall(r"^   generated/modules/(\S+)$", (API / "index.rst").read_text(encoding="utf-8"), re.M)
     if pages != PUBLIC:
         problems.append(f"api/index.rst's module pages {pages} differ from stability.md's {PUBLIC}")

@@ -46,7 +46,7 @@ __all__ = ["TOL_MIN", "MAX_ROWS", "MAX_PAIRS", "MAX_PAIRS_BYTES", "Pair", "pair_
 TOL_MIN = 1e-9
 #: Most speed rows of one pair's table (a tol needing more is refused).
 MAX_ROWS = 200000
-#: Most pairs in one export, and the largest pairs file read (a hostile file is refused, not read).
+#: Most pairs in one export (a pairs file with more is refused).
 MAX_PAIRS = 1000
 #: Largest pairs file read (bytes).
 MAX_PAIRS_BYTES = 1 << 20

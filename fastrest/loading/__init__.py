@@ -34,8 +34,11 @@ from .jackson_green import area_exponent
 __all__ = ["LoadingLaw", "LAWS", "NAMES", "JACKSON_GREEN", "GHAEDNIA", "get", "resolve"]
 
 _UNITS = (jackson_green, ghaednia)
-#: Integer codes of the loading laws for jitted code (``fastrest.jit.JACKSON_GREEN`` etc.).
-JACKSON_GREEN, GHAEDNIA = 0, 1
+# Integer codes of the loading laws for jitted code: a law's code is its position in _UNITS.
+#: Code of the Jackson-Green loading law (elastic-perfectly plastic, JGM eqs 8-15) in jitted code.
+JACKSON_GREEN = 0
+#: Code of Ghaednia et al.'s (2019) loading law (Jackson-Green with strain hardening) in jitted code.
+GHAEDNIA = 1
 N_LAWS = len(_UNITS)
 for _u in _UNITS:  # the energy module's closed forms assume the one switch (see above)
     assert _u.W_SWITCH == OMEGA_STAR_SWITCH, _u.NAME
@@ -79,7 +82,7 @@ class LoadingLaw:
 #: The registered laws by name, in code order.
 LAWS = {u.NAME: LoadingLaw(u.NAME, u.SHORT, k, u.LABEL, u.REFERENCE, bool(u.HARDENING))
         for k, u in enumerate(_UNITS)}
-#: Public names in code order.
+#: Names of the loading laws (``"jackson-green"``, ``"ghaednia"``), in code order.
 NAMES = tuple(LAWS)
 
 

@@ -26,11 +26,11 @@ __all__ = ["DEFAULT_TOL", "TOL_MIN", "MAX_NODES", "MIN_CHECK_POINTS", "MAX_CHECK
 
 #: Default relative interpolation error of the gridded export (``fastrest export grid --tol``).
 DEFAULT_TOL = 1e-3
-#: The table's own error is ~1e-9; below 1e-6 its nodes would not be accurate enough to measure against.
+#: Smallest tol of the gridded export: the table's own error is ~1e-9; below 1e-6 its nodes would not be accurate enough to measure against.
 TOL_MIN = 1e-6
 #: Most grid nodes (V1* x eps_y x nu) an export may need to meet its tol.
 MAX_NODES = 20_000_000
-#: Bounds of the random points of :func:`measure` (each costs a direct solve per model and ~1 kB).
+#: Lower bound of the random points of :func:`measure` (each costs a direct solve per model and ~1 kB).
 MIN_CHECK_POINTS = 100
 #: Upper bound of the random points of :func:`measure`.
 MAX_CHECK_POINTS = 1_000_000

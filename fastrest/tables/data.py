@@ -27,7 +27,7 @@ TableData.__doc__ = """Numba-friendly data of a :class:`~fastrest.tables.Table` 
 A namedtuple of floats, ints and contiguous arrays, built only inside fastrest (by keyword).
 Pass it into your own jitted code and call ``fastrest.jit.e_table(data, v1_star, eps_y, nu, JCG)``.
 The kernels read its arrays through raw data pointers (no reference counting per point,
-`python -m bench.stencil`), so the arrays must outlive the call: pass the data from Python as an
+``python -m bench.stencil``), so the arrays must outlive the call: pass the data from Python as an
 argument of your jitted function, as above. A TableData assembled inside jitted code from arrays
 allocated there, and dropped at the call, is not supported (its arrays can be freed before they
 are read).

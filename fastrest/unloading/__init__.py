@@ -35,9 +35,13 @@ from . import brake, elastic, etsion, jcg
 __all__ = ["UnloadingModel", "MODELS", "NAMES", "JCG", "ETSION", "BRAKE", "get"]
 
 _UNITS = (jcg, etsion, brake)
-#: Integer codes of the unloading models for jitted code (``fastrest.jit.JCG`` etc.): JCG eq (35),
-#: Etsion eqs (33)-(34), Brake (2015); a model's code is its position in ``_UNITS``.
-JCG, ETSION, BRAKE = 0, 1, 2
+# Integer codes of the unloading models for jitted code: a model's code is its position in _UNITS.
+#: Code of the Jackson-Chusoipin-Green unloading model (JGM eq 35) in jitted code (``unloading=JCG``).
+JCG = 0
+#: Code of Etsion et al.'s unloading model (JGM eqs 33-34) in jitted code (``unloading=ETSION``).
+ETSION = 1
+#: Code of Brake's (2015) unloading model in jitted code (``unloading=BRAKE``).
+BRAKE = 2
 N_MODELS = len(_UNITS)
 
 
@@ -94,7 +98,7 @@ class UnloadingModel:
 MODELS = {u.NAME: UnloadingModel(u.NAME, u.SHORT, k, u.LABEL, u.EQUATION, u.REFERENCE, float(u.OMEGA_END),
                                   float(u.CELLS_END), bool(u.FITS_HARDENING))
           for k, u in enumerate(_UNITS)}
-#: Public names in code order.
+#: Names of the unloading models (``"jcg"``, ``"etsion"``, ``"brake"``), in code order.
 NAMES = tuple(MODELS)
 
 
