@@ -40,14 +40,15 @@ from .kernel import interpolant_array
 _Table = Any
 
 __all__ = ["SIGN_CHANGE_FLOOR", "LOCAL_STARTS", "LOCAL_MIN_STEP", "LOCAL_ITERATIONS", "RIDGE_STARTS", "LATTICE_CELLS",
-           "KNOWN_WORST", "lattice_points", "worst_cells", "in_domain", "search_starts", "climb"]
+           "KNOWN_WORST", "lattice_points", "search_starts", "climb"]
 
 #: A sign-changing 1 - e^2 is measured relative to max(abs(1 - e^2), SIGN_CHANGE_FLOOR).
 SIGN_CHANGE_FLOOR = 0.1
-#: Local search (:func:`climb`): distinct humps per quantity it starts from, the step
-#: (fraction of the first) at which it stops, and its largest number of rounds.
+#: Local search (:func:`climb`): distinct humps per quantity it starts from.
 LOCAL_STARTS = 16
+#: Local search: the step (fraction of the first) at which it stops.
 LOCAL_MIN_STEP = 2.0**-20
+#: Local search: its largest number of rounds.
 LOCAL_ITERATIONS = 120
 #: Starts of :func:`search_starts` on one ridge: the same V1* cell and xi interval, or nu interval.
 RIDGE_STARTS = 3
