@@ -37,8 +37,8 @@ def build_to_tolerance(grid: dict[str, Any] | None, tol: float, *, max_rounds: i
         The starting grid (:func:`~fastrest.tables.normalise_grid`).
     tol : float
         Relative error asked (sign-changing losses: see the module doc); met within
-        :data:`SAFETY` x tol on :func:`adversarial_points` and the local maxima climbed from them
-        (:func:`measure`).
+        :data:`SAFETY` x tol by the worst :func:`measure` finds (its sample, a point in every hump
+        of the worst cells, and the local maxima climbed from the worst distinct humps).
     max_rounds : int
         Refinements tried.
     progress : None or bool
