@@ -18,8 +18,8 @@ from fastrest import jit as frj
 from fastrest.force_law import STATE_SIZE, hertz_contact_time
 
 NAMES = ("jcg", "etsion", "brake")
-#: Velocity Verlet steps per Hertz contact duration that the README and docs/model.md section 9
-#: quote for e within 1e-8 (bench/TIME_STEP.md measures the whole table).
+#: Velocity Verlet steps per Hertz contact duration that the README and docs/model.md section 10
+#: quote for e within 1e-8 (bench/FORCE_LAW.md measures the whole table).
 STEPS_1E8 = 40000
 
 
