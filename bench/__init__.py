@@ -7,4 +7,8 @@ peak memory) and checks the performance targets (bench/targets.py). It writes ``
 ``readme_table.md`` and ``results.json`` to ``--out-dir`` (default ``bench/``).
 ``python -m bench --quick`` is a smaller run (under a minute) for tests;
 ``python -m bench --update-readme`` copies ``bench/readme_table.md`` into README.md.
+The errors stated for the default curve and the direct solver are the worst of the run's sample
+and the stored search of ``python -m bench.stated_figures`` (bench/STATED_FIGURES.md);
+``python -m bench --rerender`` renders the reports again from ``results.json`` with that search
+folded in, without timing anything.
 """
