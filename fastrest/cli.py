@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import re
 import sys
@@ -71,11 +72,23 @@ def _cmd_build(args):
     return 0
 
 
+def _round_up(x, digits=3):
+    """`x` to `digits` significant digits, rounded up: a printed bound never sits below the value."""
+    if not (math.isfinite(x) and x > 0):
+        return f"{x:.{digits - 1}e}"
+    text = f"{x:.{digits - 1}e}"
+    if float(text) < x:
+        mantissa, exponent = text.split("e")
+        text = f"{float(mantissa) + 10.0 ** (1 - digits):.{digits - 1}f}e{exponent}"
+        text = f"{float(text):.{digits - 1}e}"   # 9.99e-10 + 0.01 -> 1.00e-09
+    return text
+
+
 def _print_errors(errors):
     for name, err in errors.items():
         metric = err.get("metric", "relative")
         note = "" if metric == "relative" else f" ({metric})"
-        print(f"  max relative error {name:<13s} {err['max_rel_error']:.2e}{note} at V1*={err['at_v1_star']:.6g} "
+        print(f"  max relative error {name:<13s} {_round_up(err['max_rel_error'])}{note} at V1*={err['at_v1_star']:.6g} "
               f"eps_y={err['at_eps_y']:.4g} nu={err['at_nu']:.4g}")
 
 

@@ -192,3 +192,18 @@ def test_e_two_spheres_is_documented(capsys):
                 "--sphere2-mass"):
         assert opt in text
     assert "--sphere2-E" in (REPO / "docs" / "getting-started.md").read_text()
+
+
+def test_info_prints_each_error_figure_rounded_up(capsys):
+    """`fastrest info` prints the stored measured errors to 3 digits, never below the stored value
+    (a figure rounded to nearest could state less than the worst found)."""
+    import fastrest
+    from fastrest import cli
+
+    assert cli.main(["info"]) == 0
+    out = capsys.readouterr().out
+    stored = fastrest.load_table().attrs["measured_error"]
+    for name, err in stored.items():
+        line = next(l for l in out.splitlines() if l.strip().startswith(f"max relative error {name} "))
+        printed = float(line.split()[4])
+        assert err["max_rel_error"] <= printed <= err["max_rel_error"] * (1 + 2e-2), (name, line)
