@@ -46,8 +46,8 @@ STORED_VALUES = (
     "tests/test_force_law.py::test_brake_matches_tmdsimpy_reference_data",
     "tests/test_hardening_contact.py::test_hardening_matches_tmdsimpy_reference_data",
     "tests/test_export_grid.py::test_elastic_range_is_gridded",
-    "tests/test_docstrings.py",
-    "tests/test_tables_docs.py",
+    "tests/test_docstrings.py::test_examples_run",
+    "tests/test_tables_docs.py::test_examples_run",
     "tests/test_stated_figures.py",
 )
 
