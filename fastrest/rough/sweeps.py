@@ -2,12 +2,14 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import CancelledError
 from typing import TYPE_CHECKING, Any
 from numpy.typing import ArrayLike, NDArray
 
 if TYPE_CHECKING:
     from .heights import GreenwoodWilliamson
 import math
+import time
 
 import numpy as np
 
@@ -24,6 +26,11 @@ __all__ = ["sweep", "surface_from_params", "SweepResults"]
 #: What :func:`sweep` records for a surface it cannot build or evaluate (``on_error="report"``):
 #: the errors of the model's domain and of its inputs. Anything else (MemoryError, a bug) raises.
 SURFACE_ERRORS = (ValueError, TypeError, ArithmeticError)
+
+#: Rounds of :func:`sweep` on a Dask cluster: surfaces whose task or data was lost with a worker
+#: (a ``CancelledError``, or an ``OSError`` while scattering) are submitted again, with their arrays
+#: scattered afresh, up to this many rounds in all (1, 2, 4 s apart).
+SWEEP_ATTEMPTS = 4
 
 
 class SweepResults(list[Any]):
@@ -192,7 +199,9 @@ def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jc
     client : dask.distributed.Client, optional
         Run one task per surface on this cluster. Arrays with at least ``scatter_min`` elements
         (explicit heights) and V1 are scattered once each (the same array object is shipped once
-        even if several parameter sets use it). Without a client everything runs here.
+        even if several parameter sets use it). A worker lost mid-sweep does not
+        fail it: its tasks run elsewhere, and surfaces whose data or task was lost are submitted
+        again (:data:`SWEEP_ATTEMPTS` rounds). Without a client everything runs here.
     scatter_min : int
         Smallest array (elements) scattered rather than sent with its task.
     on_error : {"report", "raise"}
@@ -281,25 +290,61 @@ def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jc
                     raise
                 out.append(exc)
         return _results(out, v, masses, unloading)
+    tasks = []  # (factory, small parameters, names of big arrays, the arrays, M)
+    for s, spec, m in zip(surfaces, specs, masses):
+        small, keys, arrays = {}, [], []
+        for key, val in spec.items():
+            if isinstance(val, np.ndarray) and val.size >= scatter_min:
+                keys.append(key)
+                arrays.append(val)
+            else:
+                small[key] = val
+        tasks.append((factory if not isinstance(s, RoughSurface) else _rebuild_surface, small, keys, arrays, m))
+    done: list[Any] = [None] * len(tasks)
+    todo = list(range(len(tasks)))
+    last: BaseException | None = None
+    for attempt in range(SWEEP_ATTEMPTS):
+        if attempt:
+            time.sleep(0.5 * 2.0**attempt)  # the scheduler notices a lost worker (its nanny restarts it)
+        try:
+            futures = _submit(client, [tasks[i] for i in todo], v, unloading, extrapolate, report)
+        except OSError as exc:  # a worker lost while scattering to it (distributed's CommClosedError)
+            last = exc
+            continue
+        lost = []
+        for i, future in zip(todo, futures):
+            try:
+                done[i] = future.result()
+            except CancelledError as exc:  # data or task lost with a worker: submitted again
+                lost.append(i)
+                last = exc
+        del futures  # release this round's scattered data
+        if not lost:
+            return _results(done, v, masses, unloading)
+        todo = lost
+    assert last is not None  # every round lost a surface
+    raise last
+
+
+def _submit(client, tasks, v, unloading, extrapolate, report):
+    """Submit one :func:`_sweep_task` per task, V1 and the big arrays scattered once each.
+
+    Not ``broadcast``: replicating to a worker that dies meanwhile never returns. A scattered array
+    lost with its worker cancels the tasks that need it; :func:`sweep` submits them again."""
     # hash=False: a fresh key per sweep (a key shared with an earlier sweep of the same data is
     # released when that sweep's future is collected, cancelling these tasks: "lost dependencies")
     v_future = client.scatter(v, hash=False)
     shipped = {}  # id(array) -> future: each big array is scattered once
     futures = []
-    for s, spec, m in zip(surfaces, specs, masses):
-        small, keys, arrays = {}, [], []
-        for key, val in spec.items():
-            if isinstance(val, np.ndarray) and val.size >= scatter_min:
-                if id(val) not in shipped:
-                    shipped[id(val)] = (client.scatter(val, hash=False), val)  # keep val alive for the id
-                keys.append(key)
-                arrays.append(shipped[id(val)][0])
-            else:
-                small[key] = val
-        fac = factory if not isinstance(s, RoughSurface) else _rebuild_surface
-        futures.append(client.submit(_sweep_task, fac, small, keys, *arrays, v_future, m, unloading,
+    for fac, small, keys, arrays, m in tasks:
+        scattered = []
+        for val in arrays:
+            if id(val) not in shipped:
+                shipped[id(val)] = (client.scatter(val, hash=False), val)  # keep val alive for the id
+            scattered.append(shipped[id(val)][0])
+        futures.append(client.submit(_sweep_task, fac, small, keys, *scattered, v_future, m, unloading,
                                      extrapolate, report, pure=False))
-    return _results(client.gather(futures), v, masses, unloading)
+    return futures
 
 
 def _results(out, v, masses, unloading):
