@@ -95,6 +95,16 @@ def check_state_count(n: object, free_bytes: int | None = None, where: str = "in
     ValueError
         ``n`` is not a whole number >= 0, or its rows need more than ``free_bytes`` (or more than
         ``MAX_CONTACTS`` rows without it); the message names n and the bytes.
+
+    Examples
+    --------
+    >>> from fastrest.force_law import check_state_count
+    >>> check_state_count(3.0)
+    3
+    >>> check_state_count(1000, 16000, "on the GPU")
+    Traceback (most recent call last):
+    ...
+    ValueError: n = 1000 contacts need 32000 bytes of history rows (32 bytes each), more than the 16000 bytes free on the GPU
     """
     try:
         n = check_count(n, "n", 0, 2**1024)  # a whole number >= 0 (any float); then the bytes its rows need
