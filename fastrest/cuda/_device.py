@@ -145,7 +145,7 @@ def new_state(n: int, *, stream: Any = 0) -> Any:
     return cuda.to_device(np.zeros((n, STATE_SIZE)), stream=stream)
 
 
-def _free_device_bytes():
+def _free_device_bytes() -> int | None:
     """Free memory of the current GPU (bytes); None where it cannot be asked (the simulator)."""
     if SIMULATOR:
         return None

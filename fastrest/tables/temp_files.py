@@ -61,7 +61,7 @@ def remove_stale_temps(path: str | os.PathLike[str], older_than: float = STALE_T
     """
     target = os.path.abspath(os.fspath(path))
     directory, pattern = os.path.dirname(target), _temp_pattern(target)
-    removed = []
+    removed: list[str] = []
     now = time.time()
     try:
         entries = list(os.scandir(directory))
