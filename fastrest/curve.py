@@ -30,9 +30,9 @@ import numpy as np
 from . import cells as _cells, curve_data as _curve_data, energy as _energy  # noqa: F401 (aliases below)
 from ._deprecation import alias, module_getattr
 from ._jit import compiled_entry, jit
-from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, check_bool, check_eps_y, check_nu,
+from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array,
                           check_velocity, kernel_array, real_scalar, warn, warn_if_outside_validated)
-from .curve_data import build_curve_data, curve_array, curve_value
+from .curve_data import build_curve_data, check_inputs as check_curve_inputs, curve_array, curve_value
 from .fastpath import fast_scalar
 from .limits import speed_limit
 from .loading import LAWS, resolve as resolve_loading
@@ -408,13 +408,7 @@ def curve(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: float | Non
 def _curve(eps_y, nu, unloading, v_max, extrapolate, et_ratio, loading, warn_unfitted):
     """:func:`curve`; ``warn_unfitted=False`` leaves the warning of JCG/Etsion unloading with
     hardening to the caller (a scene warns once, not once per material)."""
-    eps_y = real_scalar(eps_y, "eps_y")
-    nu = real_scalar(nu, "nu")
-    extrapolate = check_bool(extrapolate, "extrapolate")
-    check_eps_y(eps_y)
-    check_nu(nu)
-    if v_max is not None:
-        v_max = float(check_velocity(real_scalar(v_max, "v_max"), "v_max"))
+    eps_y, nu, v_max, extrapolate, _ = check_curve_inputs(eps_y, nu, v_max, extrapolate)
     et_ratio = real_scalar(et_ratio, "et_ratio")
     law = resolve_loading(loading, et_ratio).name  # validates et_ratio and loading
     model = unloading_model(unloading)

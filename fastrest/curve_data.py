@@ -269,7 +269,7 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
     >>> d.v_max, d.e_rows.shape[1]
     (20.0, 8)
     """
-    eps_y, nu, v_max, extrapolate, bits_per_octave = _checked(eps_y, nu, v_max, extrapolate, bits_per_octave)
+    eps_y, nu, v_max, extrapolate, bits_per_octave = check_inputs(eps_y, nu, v_max, extrapolate, bits_per_octave)
     unit = _unloading.get(unloading)
     model = unit.code
     law = _loading.resolve(loading, real_scalar(et_ratio, "et_ratio"))  # validates et_ratio and loading
@@ -308,9 +308,9 @@ def build_curve_data(eps_y: float, nu: float, unloading: str = "jcg", *, v_max: 
     return CurveData(model, float(v_max), shift, int(base) - N_HERTZ, *rows)
 
 
-def _checked(eps_y, nu, v_max, extrapolate, bits_per_octave):
-    """The inputs of :func:`build_curve_data`, validated as :func:`fastrest.curve` validates them
-    (the same helpers and messages): TypeError for non-numbers, ValueError out of range."""
+def check_inputs(eps_y, nu, v_max, extrapolate, bits_per_octave=BITS_PER_OCTAVE):
+    """The inputs of :func:`build_curve_data` and :func:`fastrest.curve`, validated (one rule, the
+    same messages): TypeError for non-numbers, ValueError out of range."""
     eps_y = real_scalar(eps_y, "eps_y")
     nu = real_scalar(nu, "nu")
     check_eps_y(eps_y)
