@@ -25,12 +25,13 @@ import numpy as np
 import numba
 import fastrest
 import fastrest.jit as frj
+print(fastrest.__file__)
 
 c = fastrest.curve(0.005, 0.33)
 s = fastrest.scene([(0.005, 0.33), (0.002, 0.3), (0.008, 0.4)])
 law = fastrest.contact_law(0.005, 0.33)
 rng = np.random.default_rng(1)
-v = np.exp(rng.uniform(0.0, np.log(900.0), 1_000_000))
+v = np.exp(rng.uniform(0.0, np.log(800.0), 1_000_000))
 k = rng.integers(0, 3, v.size)
 
 @numba.njit(cache=False)
@@ -79,9 +80,14 @@ def run(old, rounds):
                 env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(tmp, which))
                 if which == "old":
                     env["PYTHONPATH"] = str(old)
+                # cwd: a neutral directory, so that `-c`'s sys.path[0] shadows neither checkout
                 out = subprocess.run([sys.executable, "-c", WORKER], env=env, capture_output=True, text=True,
-                                     check=True)
-                res[which].append(tuple(float(x) for x in out.stdout.split()))
+                                     cwd=tmp)
+                if out.returncode:
+                    raise RuntimeError(f"{which} worker failed:\n{out.stderr}")
+                if which == "old":
+                    assert str(old) in out.stdout.split("\n")[0], out.stdout
+                res[which].append(tuple(float(x) for x in out.stdout.split("\n")[1].split()))
     return res
 
 

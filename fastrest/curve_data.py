@@ -22,7 +22,7 @@ from . import loading as _loading
 from . import unloading as _unloading
 from .cells import HERTZ_BASE, HERTZ_SHIFT, N_HERTZ, hertz_rows, jg_nodes
 from .energy import V_SWITCH, f_star_kernel, omega_m_sorted_kernel
-from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial, fit_cells, float_bits, share_edges
+from .interpolation import MANTISSA_BITS, cell_edges, cell_polynomial_in_range, fit_cells, float_bits, share_edges
 from ._validation import check_bool, check_count, check_eps_y, check_nu, check_velocity, real_scalar
 from .limits import raise_out_of_range, speed_limit, w_upper_model
 
@@ -109,7 +109,7 @@ def curve_value(rows, v_max, shift, base, what, v_in):
             hertz = v <= V_SWITCH
             b = float_bits(v)
             i = (b >> HERTZ_SHIFT) - HERTZ_BASE if hertz else (b >> shift) - base
-            r = cell_polynomial(rows, i, v)
+            r = cell_polynomial_in_range(rows, i, v)   # 1 < v <= v_max: a row of a curve's own data
             if what == 2 and hertz:
                 r *= v - 1.0
             return r

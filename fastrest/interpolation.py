@@ -33,7 +33,7 @@ from ._jit import jit
 __all__ = ["DEGREE", "ROW", "MANTISSA_BITS", "CHEB_U", "GAUSS_U", "VALUES_TO_COEFFS", "float_bits",
            "fma", "data_pointer", "row_in_range", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes",
            "share_edges", "values_to_coeffs", "fit_cells", "cell_index", "two_level_index", "row_polynomial",
-           "cell_polynomial", "pointer_cell_polynomial"]
+           "cell_polynomial", "cell_polynomial_in_range", "pointer_cell_polynomial"]
 
 DEGREE = 5
 ROW = DEGREE + 3  # center, 1/half_width, DEGREE + 1 coefficients
@@ -260,13 +260,21 @@ def row_polynomial(rows, i, u):
 
 
 @jit(inline=True)
+def cell_polynomial_in_range(rows, i, v):
+    """:func:`cell_polynomial` without the row check, for a caller whose ``i`` is a row of ``rows``
+    by construction (a curve's speed checked against its v_max): the check measurably slowed the
+    scene path (bench/BOUNDS_AB.md)."""
+    k = np.uint64(i)
+    return estrin5((v - rows[k, 0]) * rows[k, 1], rows[k, 2], rows[k, 3], rows[k, 4], rows[k, 5],
+                   rows[k, 6], rows[k, 7])
+
+
+@jit(inline=True)
 def cell_polynomial(rows, i, v):
     """Evaluate row i's polynomial at v; NaN when ``i`` is not a row of ``rows``."""
     if not row_in_range(rows, i):
         return math.nan
-    k = np.uint64(i)
-    return estrin5((v - rows[k, 0]) * rows[k, 1], rows[k, 2], rows[k, 3], rows[k, 4], rows[k, 5],
-                   rows[k, 6], rows[k, 7])
+    return cell_polynomial_in_range(rows, i, v)
 
 
 @jit(inline=True)
