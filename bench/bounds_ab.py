@@ -11,12 +11,9 @@ is not timed here. Each figure is the best of several repeats, the median over r
 bench/BOUNDS_AB.md.
 """
 import argparse
-import os
-import subprocess
-import sys
-import tempfile
 from pathlib import Path
 
+from .ab import medians, revisions, run_interleaved
 from .report import machine
 
 WORKER = r'''
@@ -25,7 +22,6 @@ import numpy as np
 import numba
 import fastrest
 import fastrest.jit as frj
-print(fastrest.__file__)
 
 c = fastrest.curve(0.005, 0.33)
 s = fastrest.scene([(0.005, 0.33), (0.002, 0.3), (0.008, 0.4)])
@@ -72,36 +68,15 @@ NAMES = ("`Curve.e`, 1e6 speeds (ns/point)", "`jit.e_curve` in a user loop (ns/p
          "`Scene.e`, 3 materials (ns/point)", "`jit.contact_force`, 1e4 contacts x 100 steps (ns/contact-step)")
 
 
-def run(old, rounds):
-    res = {"old": [], "new": []}
-    with tempfile.TemporaryDirectory() as tmp:
-        for _ in range(rounds):
-            for which in ("old", "new"):
-                env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(tmp, which))
-                if which == "old":
-                    env["PYTHONPATH"] = str(old)
-                # cwd: a neutral directory, so that `-c`'s sys.path[0] shadows neither checkout
-                out = subprocess.run([sys.executable, "-c", WORKER], env=env, capture_output=True, text=True,
-                                     cwd=tmp)
-                if out.returncode:
-                    raise RuntimeError(f"{which} worker failed:\n{out.stderr}")
-                if which == "old":
-                    assert str(old) in out.stdout.split("\n")[0], out.stdout
-                res[which].append(tuple(float(x) for x in out.stdout.split("\n")[1].split()))
-    return res
-
-
 def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m bench.bounds_ab", description=__doc__)
     p.add_argument("--old", required=True, help="checkout of the old fastrest (put first on PYTHONPATH)")
     p.add_argument("--rounds", type=int, default=5)
     a = p.parse_args(argv)
-    res = run(Path(a.old), a.rounds)
-    med = {k: [sorted(x[j] for x in v)[len(v) // 2] for j in range(len(NAMES))] for k, v in res.items()}
+    res = run_interleaved(a.old, a.rounds, WORKER)
+    med = medians(res, len(NAMES))
     m = machine()
-    rev = subprocess.run(["git", "-C", a.old, "rev-parse", "--short", "HEAD"], capture_output=True,
-                         text=True).stdout.strip()
-    new = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    rev, new = revisions(a.old)
     lines = ["# Row bounds check in the cell polynomials: old against new (`python -m bench.bounds_ab`)", "",
              f"Machine: {m.get('nproc')}-core {m.get('cpu')}; old = {rev or a.old}, new = {new or 'this checkout'}; "
              f"{a.rounds} interleaved rounds (subprocesses, own Numba caches), median of the per-round bests.", "",

@@ -9,12 +9,9 @@ table evaluation and ``contact_force`` are in ``python -m bench`` and ``python -
 as ratios to a reference measured in the same run.) Writes bench/LOADING_AB.md.
 """
 import argparse
-import os
-import subprocess
-import sys
-import tempfile
 from pathlib import Path
 
+from .ab import medians, revisions, run_interleaved
 from .report import machine
 
 WORKER = r'''
@@ -34,29 +31,15 @@ print(best(lambda: fastrest.curve(0.005, 0.33), 30) * 1e3, best(lambda: direct.e
 '''
 
 
-def run(old, rounds):
-    res = {"old": [], "new": []}
-    with tempfile.TemporaryDirectory() as tmp:
-        for i in range(rounds):
-            for which in ("old", "new"):
-                env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(tmp, which))
-                if which == "old":
-                    env["PYTHONPATH"] = str(old)
-                out = subprocess.run([sys.executable, "-c", WORKER], env=env, capture_output=True, text=True, check=True)
-                res[which].append(tuple(float(x) for x in out.stdout.split()))
-    return res
-
-
 def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m bench.loading_ab", description=__doc__)
     p.add_argument("--old", required=True, help="checkout of the old fastrest (put first on PYTHONPATH)")
     p.add_argument("--rounds", type=int, default=4)
     a = p.parse_args(argv)
-    res = run(Path(a.old), a.rounds)
-    med = {k: [sorted(x[j] for x in v)[len(v) // 2] for j in range(2)] for k, v in res.items()}
+    res = run_interleaved(a.old, a.rounds, WORKER)
+    med = medians(res, 2)
     m = machine()
-    rev = subprocess.run(["git", "-C", a.old, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    new = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    rev, new = revisions(a.old)
     lines = ["# Jackson-Green paths before and after the loading-law refactor (`python -m bench.loading_ab`)", "",
              f"Machine: {m.get('nproc')}-core {m.get('cpu')}; old = {rev or a.old}, new = {new or 'this checkout'}; "
              f"{a.rounds} interleaved rounds, median of the per-round bests.", "",
