@@ -27,7 +27,8 @@ elastic branch stores and returns energy without loss, so the energy a contact h
 function of its largest interference alone: :func:`dissipated_energy` reads it from the state.
 
 The loading force above w = 1.9 is read from bit-indexed degree-5 cells fitted to eq (9)
-(:func:`fastrest.forward.P_table_forward`, ~1e-14 relative), the law's data being the material's
+(:func:`fastrest.forward.P_table_forward`, ~1e-14 relative), and the unloading model's residual
+from cells beside them (:mod:`fastrest.law_cells`), the law's data being the material's
 :class:`fastrest.forward.ForwardData`.
 
 From Numba: ``law.data`` and :func:`contact_force` (re-exported by :mod:`fastrest.jit`), one
@@ -54,17 +55,18 @@ from .loading import p_star_above, resolve as resolve_loading
 from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import ForwardData, P_table_forward, forward_data, loss_forward
-from .interpolation import cell_index, cell_polynomial
+from .interpolation import select
+from .law_cells import law_step
 from .limits import interference_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
 from .scene import material_index
 from . import unloading as _unloading
-from .unloading import elastic
 
 __all__ = ["STATE_SIZE", "MAX_CONTACTS", "check_state_count", "contact_force", "ContactLaw", "contact_law", "hertz_contact_time", "StackedLaws",
            "stack_laws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked"]
 
-#: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res*, and
-#: delta = w_max - w_res* (0 until the contact first unloads from w_max).
+#: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res* and
+#: delta = w_max - w_res* of the unloading model at w_max (set with w_max at every loading step;
+#: rows of fastrest <= 0.2 left 0 there until the contact unloaded: such rows are refused).
 STATE_SIZE = 4
 #: Most contacts :meth:`ContactLaw.new_state` allocates at once (32 GB of history rows).
 MAX_CONTACTS = 10**9
@@ -138,18 +140,21 @@ def contact_force(law, state, w):
     -------
     float
         P* (-). NaN for NaN or infinite w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
-        the unloading model), a state whose w_max = state[0] is negative or NaN (no history of
-        this law) or an unknown unloading model; the state is then set to NaN (the
-        contact's history is lost: every later call gives NaN until the row is zeroed). A jit
-        kernel: it never raises.
+        the unloading model), a state whose w_max = state[0] is negative or NaN, or positive
+        with delta = state[3] <= 0 (no history of this law; a row fastrest 0.2 wrote while its
+        contact loaded); the state is then set to NaN (the contact's history is lost: every
+        later call gives NaN until the row is zeroed). A jit kernel: it never raises.
 
     Notes
     -----
     Virgin loading (w above the largest interference so far): the Jackson-Green law, Hertz w^1.5
     up to w = 1.9 (JGM eq 14) and eq (9) above (Ghaednia et al.'s with hardening,
     ``law.et_ratio`` > 0), from the cells of ``law.p_rows`` (~1e-14 relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
-    maximum point and the unloading model's residual interference (eq 35, eqs 33-34 or Brake's);
-    0 at or below w_res*. See docs/model.md section 10. Inlined into the calling jitted loop; also
+    maximum point and the unloading model's residual interference (eq 35, eqs 33-34 or Brake's,
+    read from cells beside P*'s to ~1e-15 and stored with w_max at every loading step);
+    0 at or below w_res*. No branch: every case is computed and one chosen by selects
+    (:mod:`fastrest.law_cells`), so a step-major DEM loop does not mispredict
+    (bench/DEM_LOOP.md). See docs/model.md section 10. Inlined into the calling jitted loop; also
     exported as :func:`fastrest.jit.contact_force`.
 
     Examples
@@ -165,47 +170,13 @@ def contact_force(law, state, w):
     >>> state.round(6)  # w_max, P*(w_max), w_res*, w_max - w_res*
     array([10.      , 25.647583,  3.701334,  6.298666])
     """
-    # every field of ``law`` is read here, unconditionally: read inside a rarely taken branch, a
-    # field made the caller's loop ~15x slower (Numba materialises the tuple; bench/FORCE_LAW.md)
-    model, eps_y, nu, w_end = law.model, law.eps_y, law.nu, law.w_max
-    rows, shift, base = law.p_rows, law.shift, law.base
-    loading, et_ratio = law.law, law.et_ratio
-    return _force_step(model, eps_y, nu, w_end, rows, shift, base, loading, et_ratio, state, w)
-
-
-@jit(inline=True)
-def _force_step(model, eps_y, nu, w_end, rows, shift, base, loading, et_ratio, state, w):
-    """The body of :func:`contact_force` and :func:`contact_force_stacked`: one material's fields
-    (``rows`` may hold other materials' rows too: ``base`` places this material's)."""
-    w = np.float64(w)  # integer and float32 interferences (the cell index reads float64 bits)
-    w_max = state[0]
-    if w > w_max and w_max >= 0.0:  # virgin loading, on the JG law (P_table_forward's rule); w_max < 0: no history
-        if w <= W_SWITCH:
-            p = w * math.sqrt(w)
-        elif w <= w_end:
-            p = cell_polynomial(rows, cell_index(w, shift, base), w)
-        else:
-            p = np.nan
-        if p == p:
-            state[0] = w
-            state[1] = p
-            state[3] = 0.0  # residual of the new maximum: computed when the contact unloads
-            return p
-    elif w_max > 0.0:  # unloading or reloading below w_max: elastic, eq (32); 0 below w_res
-        if state[3] == 0.0:
-            w_res, delta = _unloading.residual(model, w_max, w_max - 1.0, state[1], eps_y, nu, loading, et_ratio)
-            state[2] = w_res
-            state[3] = delta
-        if w > -math.inf:  # not NaN, not -inf
-            return elastic.force(w, w_max, state[1], state[2], state[3])
-    elif w <= 0.0 and w > -math.inf and w_max == 0.0:  # a gap before first contact
-        return 0.0
-    state[0] = state[1] = state[2] = state[3] = np.nan  # left the model's domain: history lost
-    return np.nan
+    rows = law.law_rows
+    return law_step(rows, 0, rows.shape[0] - 1, law.w_max, state, np.float64(w))
 
 
 StackedLaws = namedtuple("StackedLaws", ["model", "eps_y", "nu", "w_max", "shift", "base", "p_rows",
-                                         "omega_c", "P_c", "law", "et_ratio", "f_rows"])
+                                         "omega_c", "P_c", "law", "et_ratio", "f_rows", "law_rows", "law_first",
+                                         "law_last"])
 StackedLaws.__doc__ = """The contact laws of several materials in one Numba-friendly data: arrays indexed by material.
 
 Build it with :func:`stack_laws` (not by hand) and pass it, with a material index per contact, to
@@ -239,6 +210,11 @@ et_ratio : float64 ndarray
 f_rows : ndarray
     (n, 8) float64: every material's rows of the loading energy F, placed as ``p_rows``
     (:func:`dissipated_energy_stacked` reads them).
+law_rows : ndarray
+    (n, 16) float64: every material's ``law_rows`` (:mod:`fastrest.law_cells`), one after the
+    other (:func:`contact_force_stacked` reads them).
+law_first, law_last : int64 ndarray
+    Material k's law rows are ``law_first[k] .. law_first[k] + law_last[k]``.
 
 Examples
 --------
@@ -294,15 +270,13 @@ def contact_force_stacked(laws, material, state, w):
     >>> contact_force_stacked(laws, 2, steel.new_state(), 10.0)  # no material 2
     nan
     """
-    models, eps_a, nu_a, w_end_a = laws.model, laws.eps_y, laws.nu, laws.w_max
-    rows, shift_a, base_a = laws.p_rows, laws.shift, laws.base
-    law_a, et_a = laws.law, laws.et_ratio
-    k = material_index(material)
-    if k < 0 or k >= eps_a.size:
-        state[0] = state[1] = state[2] = state[3] = np.nan
-        return np.nan
-    return _force_step(models[k], eps_a[k], nu_a[k], w_end_a[k], rows, shift_a[k], base_a[k], law_a[k], et_a[k],
-                       state, w)
+    first, last, w_end = laws.law_first, laws.law_last, laws.w_max
+    n = first.size
+    k = material_index(material)  # -1 for a fraction, a negative or non-finite index
+    ok = select(k >= 0, select(k < n, 1, 0), 0)
+    k = select(ok == 1, k, 0)  # read material 0's fields for a bad index, then NaN
+    end = select(ok == 1, w_end[k], math.nan)
+    return law_step(laws.law_rows, first[k], last[k], end, state, np.float64(w))
 
 
 @jit(inline=True)
@@ -399,7 +373,7 @@ def dissipated_energy_stacked(laws, material, state):
         return np.nan
     eps_y, nu = laws.eps_y[k], laws.nu[k]
     data = ForwardData(laws.model[k], eps_y, nu, c_of_nu(nu), area_exponent(eps_y), laws.w_max[k], laws.shift[k],
-                       laws.base[k], laws.f_rows, laws.p_rows, laws.law[k], laws.et_ratio[k])
+                       laws.base[k], laws.f_rows, laws.p_rows, laws.law[k], laws.et_ratio[k], laws.law_rows)
     return dissipated_energy(data, state)
 
 
@@ -456,6 +430,7 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
         raise ValueError(f"laws must hold 1 to 65536 contact laws; got {len(laws)}")
     sizes = [law.data.p_rows.shape[0] for law in laws]
     offset = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
+    law_sizes = [law.data.law_rows.shape[0] for law in laws]
     return StackedLaws(
         model=np.array([law.data.model for law in laws], dtype=np.int64),
         law=np.array([law.data.law for law in laws], dtype=np.int64),
@@ -467,6 +442,9 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
         base=np.array([law.data.base for law in laws], dtype=np.int64) - offset,
         p_rows=np.ascontiguousarray(np.concatenate([law.data.p_rows for law in laws]), dtype=np.float64),
         f_rows=np.ascontiguousarray(np.concatenate([law.data.f_rows for law in laws]), dtype=np.float64),
+        law_rows=np.ascontiguousarray(np.concatenate([law.data.law_rows for law in laws]), dtype=np.float64),
+        law_first=np.concatenate([[0], np.cumsum(law_sizes)[:-1]]).astype(np.int64),
+        law_last=np.array(law_sizes, dtype=np.int64) - 1,
         omega_c=np.array([law.omega_c for law in laws], dtype=np.float64),
         P_c=np.array([law.P_c for law in laws], dtype=np.float64))
 
@@ -543,9 +521,11 @@ def _overshoot_force(law, state, w):
     interference of an impact at a speed the model accepts overshoots it by O(dt^2); the force
     there is the formula's, as for every other speed, instead of NaN."""
     p = _law_formula(law, w)
+    w_res, delta = _unloading.residual(law.model, w, w - 1.0, p, law.eps_y, law.nu, law.law, law.et_ratio)
     state[0] = w
     state[1] = p
-    state[3] = 0.0
+    state[2] = w_res
+    state[3] = delta
     return p
 
 
@@ -854,18 +834,21 @@ class ContactLaw:
     def _check_history(self, rows, shape):
         """Refuse a state row that is no history of this law (:meth:`force` and
         :meth:`dissipated_energy`, one rule): w_max = state[0] NaN, < 0 or past the law's w_max,
-        or P*(w_max) = state[1] NaN (the history was lost)."""
-        w_top, p_top = rows[:, 0], rows[:, 1]
-        bad = ~((w_top >= 0.0) & (w_top <= self.w_max) & (p_top == p_top))
+        or P*(w_max) = state[1] NaN (the history was lost), or w_max > 0 with delta = state[3] <= 0
+        (delta is set with w_max: a row of fastrest <= 0.2 written while its contact loaded)."""
+        w_top, p_top, delta = rows[:, 0], rows[:, 1], rows[:, 3]
+        bad = ~((w_top >= 0.0) & (w_top <= self.w_max) & (p_top == p_top) & ((delta > 0.0) | (w_top == 0.0)))
         if bad.any():
             self._refuse_history(rows, shape, int(np.flatnonzero(bad)[0]))
 
     def _refuse_history(self, rows, shape, i):
         where = "state" if len(shape) == 1 else f"state row {tuple(int(j) for j in np.unravel_index(i, shape[:-1]))}"
         raise ValueError(f"{where} = {rows[i].tolist()} is no history of this law: w_max = state[0] must be "
-                         f"finite, >= 0 and <= the law's w_max = {self.w_max!r} (in units of omega_c), and "
+                         f"finite, >= 0 and <= the law's w_max = {self.w_max!r} (in units of omega_c), "
                          "P*(w_max) = state[1] a number (a NaN row: the contact's history was lost; start "
-                         "again from ContactLaw.new_state())")
+                         "again from ContactLaw.new_state()), and delta = state[3] > 0 once w_max > 0 (a row "
+                         "with w_max > 0 and delta = 0 was written by fastrest 0.2 or earlier while its "
+                         "contact was loading: it is refused, not read as a wrong branch)")
 
     def _full_limit(self):
         """The largest w* a law of this material, model and loading law could serve."""

@@ -61,6 +61,7 @@ from .loading.jackson_green import W_SWITCH, area_exponent
 from .critical import c_of_nu
 from .energy import F_SWITCH, law_integral
 from .loading import p_star_above, resolve as resolve_loading
+from .law_cells import law_rows
 from .limits import interference_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial, share_edges)
@@ -75,7 +76,7 @@ __all__ = ["ForwardData", "forward_data", "F_forward", "P_forward",
 BITS_PER_OCTAVE = 5
 
 ForwardData = namedtuple("ForwardData", ["model", "eps_y", "nu", "C", "B", "w_max", "shift", "base",
-                                         "f_rows", "p_rows", "law", "et_ratio"])
+                                         "f_rows", "p_rows", "law", "et_ratio", "law_rows"])
 ForwardData.__doc__ = """Numba-friendly forward map of one material (see :func:`forward_data`).
 
 Build it with :func:`forward_data` (or :func:`fastrest.contact_law`, as ``law.data``), not by
@@ -106,6 +107,10 @@ law : int
     Loading law code (:mod:`fastrest.loading`): 0 = Jackson-Green, 1 = Ghaednia et al. (2019).
 et_ratio : float
     Tangent modulus over Young's modulus Et/E (-); 0 for Jackson-Green.
+law_rows : ndarray
+    (n, 16) float64 rows of P* and of the unloading model's delta = w_m* - w_res* from w = 1 to
+    the top cell, one index for both (:mod:`fastrest.law_cells`; read by
+    :func:`fastrest.jit.contact_force`).
 
 Examples
 --------
@@ -573,7 +578,7 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     shift = MANTISSA_BITS - bits_per_octave
     if w_max <= W_SWITCH:  # closed forms only: one dummy cell
         return ForwardData(model, eps_y, nu, C, B, w_max, shift, 0, np.zeros((1, 8)), np.zeros((1, 8)), law.code,
-                           et_ratio)
+                           et_ratio, law_rows(np.zeros((0, 2)), np.zeros((0, 8)), eps_y, nu, model, law.code, et_ratio))
     base, edges = cell_edges(W_SWITCH, w_max, bits_per_octave)
     # Serve whole bit-cells: the last cell ends at its natural boundary, not at w_max, so a table
     # built for a larger w_max holds bit-identical rows for every w both cover.
@@ -587,7 +592,8 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     _p_nodes(flat, eps_y, nu, law.code, et_ratio, p_vals)
     f_rows = np.ascontiguousarray(fit_cells(edges, share_edges(f_vals.reshape(nodes.shape))))
     p_rows = np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
-    return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows, law.code, et_ratio)
+    return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows, law.code, et_ratio,
+                       law_rows(edges, p_rows, eps_y, nu, model, law.code, et_ratio))
 
 
 def _forward_limit(eps_y, nu, *, extrapolate=False):

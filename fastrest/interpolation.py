@@ -31,7 +31,7 @@ from numba.extending import intrinsic
 from ._jit import jit
 
 __all__ = ["DEGREE", "ROW", "MANTISSA_BITS", "CHEB_U", "GAUSS_U", "VALUES_TO_COEFFS", "float_bits",
-           "fma", "data_pointer", "row_in_range", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes",
+           "fma", "select", "fdiv", "data_pointer", "row_in_range", "estrin5", "cell_key", "cell_edges", "two_level_cells", "chebyshev_nodes",
            "share_edges", "values_to_coeffs", "fit_cells", "cell_index", "two_level_index", "row_polynomial",
            "cell_polynomial", "cell_polynomial_in_range", "pointer_cell_polynomial"]
 
@@ -76,6 +76,46 @@ def fma(typingctx, a, b, c):
 
     def codegen(context, builder, signature, args):
         return builder.fma(*args)
+
+    return sig, codegen
+
+
+@intrinsic
+def select(typingctx, c, a, b):
+    """``a if c else b`` as one LLVM ``select``: both values are computed, no branch.
+
+    Numba writes ``a if c else b`` as a branch; a kernel stepping contacts in different states
+    (loading, unloading, apart) then mispredicts it. ``a`` and ``b`` are both float64 or both
+    int64; ``c`` a boolean (one comparison: a select on a combination of comparisons compiles to a
+    branch on x86).
+    """
+    if not isinstance(c, types.Boolean):
+        return None
+    if all(isinstance(x, types.Float) and x.bitwidth == 64 for x in (a, b)):
+        ty = types.float64
+    elif all(isinstance(x, types.Integer) and x.bitwidth == 64 and x.signed for x in (a, b)):
+        ty = types.int64
+    else:
+        return None
+    sig = ty(types.boolean, ty, ty)
+
+    def codegen(context, builder, signature, args):
+        return builder.select(args[0], args[1], args[2])
+
+    return sig, codegen
+
+
+@intrinsic
+def fdiv(typingctx, a, b):
+    """a / b of two float64, IEEE (b = 0 gives inf or NaN): no ZeroDivisionError check, which
+    Numba adds to ``/`` in a caller compiled with ``error_model="python"`` (the default) and which
+    is a branch."""
+    if not all(isinstance(x, types.Float) and x.bitwidth == 64 for x in (a, b)):
+        return None
+    sig = types.float64(types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        return builder.fdiv(args[0], args[1])
 
     return sig, codegen
 
