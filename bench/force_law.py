@@ -284,6 +284,9 @@ def write(t, frac, imp, conv, cfg, path):
          f"{cfg['rounds']} interleaved rounds; ratios are medians of per-round ratios to the Hertz "
          "loop of the same round.", "",
          "## 1. Cost of one force call in a user's @njit loop", "",
+         "Contact-major (one contact's whole impact, then the next: every branch predictable); the "
+         "step-major loop DEM codes run is measured by `python -m bench.dem_loop` (bench/DEM_LOOP.md), "
+         "whose figures the docs quote.", "",
          f"{cfg['contacts']} contacts x {cfg['path_steps']} steps of real impact paths (V1* 1.01-100); "
          "share of calls: " + ", ".join(f"{k} {v:.0%}" for k, v in frac.items()) + ".", "",
          "| force | ns per call (median) | x Hertz |", "|---|---|---|"]
