@@ -19,9 +19,10 @@ cells of ``ForwardData.p_rows`` and hold its P* coefficients bit for bit. Below 
 w^1.5, computed (the rows hold its fit, unused); delta is tabulated from w = 1 (JCG's residual
 starts there; Etsion's and Brake's are 0 under Hertz loading, delta = w) and is w up to w = 1.
 
-delta is interpolated to ~1e-15 relative of the unloading model's formula (eq 35, eqs 33-34,
-Brake's); the unloading force P_max ((w - w_res*)/delta)^1.5 therefore differs from the formula's
-by ~1e-15 of P_max (docs/model.md section 10; tests/test_law_cells.py searches every cell).
+delta is interpolated to 3.3e-14 relative of the unloading model's formula (eq 35, eqs 33-34,
+Brake's; the worst of a search over every cell, tests/test_law_cells.py), the level of the P*
+cells; the unloading force P_max s^1.5, s = (w - w_res*)/delta, moves by 1.5 (1 - s)/s of it:
+within 1e-12 relative for s >= 0.05 and 2e-14 of P_max everywhere (docs/model.md section 10).
 """
 from __future__ import annotations
 
