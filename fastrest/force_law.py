@@ -56,7 +56,7 @@ from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import ForwardData, P_table_forward, forward_data, loss_forward
 from .interpolation import select
-from .law_cells import law_step
+from .law_cells import law_step, law_step_branching
 from .limits import interference_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
 from .scene import material_index
 from . import unloading as _unloading
@@ -172,6 +172,14 @@ def contact_force(law, state, w):
     """
     rows = law.law_rows
     return law_step(rows, 0, rows.shape[0] - 1, law.w_max, state, np.float64(w))
+
+
+@jit(inline=True)
+def _contact_force_sequential(law, state, w):
+    """:func:`contact_force` with branches (bit for bit the same): for one contact stepped through
+    time (:meth:`ContactLaw.force`, :func:`impact_in_time`), where it is the faster one."""
+    rows = law.law_rows
+    return law_step_branching(rows, 0, rows.shape[0] - 1, law.w_max, state, np.float64(w))
 
 
 StackedLaws = namedtuple("StackedLaws", ["model", "eps_y", "nu", "w_max", "shift", "base", "p_rows",
@@ -452,7 +460,7 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
 @jit
 def _force_path(law, state, w, out):
     for i in range(w.size):
-        out[i] = contact_force(law, state, w[i])
+        out[i] = _contact_force_sequential(law, state, w[i])
 
 
 @jit
@@ -521,10 +529,10 @@ def _overshoot_force(law, state, w):
     interference of an impact at a speed the model accepts overshoots it by O(dt^2); the force
     there is the formula's, as for every other speed, instead of NaN."""
     p = _law_formula(law, w)
-    w_res, delta = _unloading.residual(law.model, w, w - 1.0, p, law.eps_y, law.nu, law.law, law.et_ratio)
+    _, delta = _unloading.residual(law.model, w, w - 1.0, p, law.eps_y, law.nu, law.law, law.et_ratio)
     state[0] = w
     state[1] = p
-    state[2] = w_res
+    state[2] = w - delta  # as the law writes it (w_res* to rounding)
     state[3] = delta
     return p
 
@@ -575,7 +583,7 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
             c = w - W_SWITCH
             disc = v * v - 2.0 * a * c
             t1 = -2.0 * c / (v + math.sqrt(disc))
-            a1 = -1.25 * contact_force(law, state, W_SWITCH)
+            a1 = -1.25 * _contact_force_sequential(law, state, W_SWITCH)
             v += 0.5 * (a + a1) * t1
             w = W_SWITCH
             a = -1.25 * (P_table_forward(law, np.nextafter(W_SWITCH, math.inf)) if w_end > W_SWITCH
@@ -585,7 +593,7 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
         if w_new > w_end and w_new > state[0] and w_new > W_SWITCH:
             p = _overshoot_force(law, state, w_new)
         else:
-            p = contact_force(law, state, w_new)
+            p = _contact_force_sequential(law, state, w_new)
         a_new = -1.25 * p
         v += 0.5 * (a + a_new) * h
         w = w_new

@@ -38,7 +38,8 @@ from .loading import p_star_unchecked
 from .loading.jackson_green import W_SWITCH
 from .unloading import residual
 
-__all__ = ["LAW_ROW", "LAW_BITS_PER_OCTAVE", "KEY_ONE", "law_rows", "law_row", "law_step"]
+__all__ = ["LAW_ROW", "LAW_BITS_PER_OCTAVE", "KEY_ONE", "law_rows", "law_row", "virgin", "elastic_back",
+           "outside", "law_step", "law_step_branching"]
 
 #: float64 per row: center, 1/half_width, six coefficients of P*, six of delta, two zeros.
 LAW_ROW = 16
@@ -108,6 +109,37 @@ def law_row(w, first, last):
 
 
 @jit(inline=True)
+def virgin(rows, first, last, w):
+    """(P*, delta) of virgin loading to w > 0: Hertz's w^1.5 up to 1.9 (eq 14), the cells above
+    (eq 9); delta = w up to w = 1 (w_res* = 0), the cells above."""
+    i = np.uint64(law_row(w, first, last))  # >= 0: no wraparound code
+    u = (w - rows[i, 0]) * rows[i, 1]
+    p_cell = estrin5(u, rows[i, 2], rows[i, 3], rows[i, 4], rows[i, 5], rows[i, 6], rows[i, 7])
+    d_cell = estrin5(u, rows[i, 8], rows[i, 9], rows[i, 10], rows[i, 11], rows[i, 12], rows[i, 13])
+    w_pos = select(w > 0.0, w, 0.0)
+    return select(w <= W_SWITCH, w_pos * math.sqrt(w_pos), p_cell), select(w <= 1.0, w, d_cell)
+
+
+@jit(inline=True)
+def elastic_back(w_max, p_max, delta, w):
+    """P* on the elastic branch through the maximum, eq (32): p_max s^1.5, s = (w - w_res*)/delta
+    with the gap to w_max taken exactly; 0 at or below w_res* (apart) and for delta = 0 (virgin)."""
+    s = fdiv(delta - (w_max - w), select(delta > 0.0, delta, 1.0))
+    s = select(s > 0.0, s, 0.0)
+    return p_max * (s * math.sqrt(s))
+
+
+@jit(inline=True)
+def outside(w_end, w_max, delta, w):
+    """0.0, or NaN where the law does not apply: w NaN, -inf or past ``w_end``; a row with w_max
+    < 0 or NaN, or w_max > 0 with delta <= 0 (no history of a law). Selects on one comparison each."""
+    bad = select(w <= w_end, 0.0, math.nan)
+    bad = select(w > -math.inf, bad, math.nan)
+    bad = select(w_max >= 0.0, bad, math.nan)
+    return select(delta > 0.0, bad, select(w_max == 0.0, bad, math.nan))
+
+
+@jit(inline=True)
 def law_step(rows, first, last, w_end, state, w):
     """Normal force P* at interference w, updating the contact's history row, without a branch.
 
@@ -133,24 +165,9 @@ def law_step(rows, first, last, w_end, state, w):
     w_max = state[0]
     p_max = state[1]
     delta = state[3]
-    i = np.uint64(law_row(w, first, last))  # >= 0: no wraparound code
-    u = (w - rows[i, 0]) * rows[i, 1]
-    p_cell = estrin5(u, rows[i, 2], rows[i, 3], rows[i, 4], rows[i, 5], rows[i, 6], rows[i, 7])
-    d_cell = estrin5(u, rows[i, 8], rows[i, 9], rows[i, 10], rows[i, 11], rows[i, 12], rows[i, 13])
-    # virgin loading to w: Hertz (eq 14) up to 1.9, the cells (eq 9) above; w_res* = 0 up to w = 1
-    w_pos = select(w > 0.0, w, 0.0)
-    p_load = select(w <= W_SWITCH, w_pos * math.sqrt(w_pos), p_cell)
-    d_load = select(w <= 1.0, w, d_cell)
-    # elastic unloading/reloading through the maximum, eq (32): s = (w - w_res*)/delta, the gap to
-    # w_max taken exactly; 0 at or below w_res* (apart; virgin: delta = 0)
-    s = fdiv(delta - (w_max - w), select(delta > 0.0, delta, 1.0))
-    s = select(s > 0.0, s, 0.0)
-    p_back = p_max * (s * math.sqrt(s))
-    # outside the law, or no history of one: NaN (each select on one comparison: no branch)
-    bad = select(w <= w_end, 0.0, math.nan)
-    bad = select(w > -math.inf, bad, math.nan)
-    bad = select(w_max >= 0.0, bad, math.nan)
-    bad = select(delta > 0.0, bad, select(w_max == 0.0, bad, math.nan))
+    p_load, d_load = virgin(rows, first, last, w)
+    p_back = elastic_back(w_max, p_max, delta, w)
+    bad = outside(w_end, w_max, delta, w)
     top = select(w > w_max, w, w_max)
     d_top = select(w > w_max, d_load, delta)
     state[0] = top + bad
@@ -158,3 +175,29 @@ def law_step(rows, first, last, w_end, state, w):
     state[2] = (top - d_top) + bad
     state[3] = d_top + bad
     return select(w > w_max, p_load, p_back) + bad
+
+
+@jit(inline=True)
+def law_step_branching(rows, first, last, w_end, state, w):
+    """:func:`law_step` with branches: the same values bit for bit, fewer instructions per call.
+
+    For loops that step one contact through time (``ContactLaw.force``, ``ContactLaw.impact``),
+    where every branch is predictable and each call waits for the previous one: there computing
+    every case costs more than the branches (bench/LAW_AB.md). A loop over many contacts in
+    different states (a DEM step) mispredicts them: :func:`law_step` (bench/DEM_LOOP.md).
+    """
+    w_max = state[0]
+    p_max = state[1]
+    delta = state[3]
+    bad = outside(w_end, w_max, delta, w)
+    if bad == 0.0:
+        if w > w_max:
+            p_load, d_load = virgin(rows, first, last, w)
+            state[0] = w
+            state[1] = p_load
+            state[2] = w - d_load
+            state[3] = d_load
+            return p_load
+        return elastic_back(w_max, p_max, delta, w)
+    state[0] = state[1] = state[2] = state[3] = math.nan
+    return math.nan

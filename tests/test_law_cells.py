@@ -25,6 +25,7 @@ import pytest
 import fastrest
 from fastrest import jit as frj
 from fastrest.forward import P_table_forward
+from fastrest.law_cells import law_step, law_step_branching
 from fastrest.loading import p_star_unchecked
 from fastrest.unloading import residual
 
@@ -157,3 +158,34 @@ def test_jcg_end_extrapolated_absolute_error():
     _, got, want = _rel(data, pts)
     err = np.abs(got - want)
     assert err.max() <= 1e-11, err.max()
+
+
+@numba.njit
+def _both(rows, last, w_end, w, a, b, out_a, out_b):
+    for t in range(w.shape[1]):
+        for i in range(w.shape[0]):
+            out_a[i, t] = law_step(rows, 0, last, w_end, a[i], w[i, t])
+            out_b[i, t] = law_step_branching(rows, 0, last, w_end, b[i], w[i, t])
+
+
+@pytest.mark.parametrize("model, et", [("jcg", 0.0), ("etsion", 0.0), ("brake", 0.01)])
+def test_branch_free_and_branching_steps_agree_bit_for_bit(model, et):
+    """ContactLaw.force and ContactLaw.impact step with the branching kernel, DEM loops with the
+    branch-free one: the same forces and rows, bit for bit, including NaN cases and 0.2 rows."""
+    law = _law(0.002, 0.3, model, et)
+    data = law.data
+    rng = np.random.default_rng(7)
+    w = np.cumsum(rng.normal(0.0, 3.0, (200, 300)), axis=1)
+    w[::17, 150] = np.nan
+    w[5::23, 100] = data.w_max * 1.5
+    w[7::29, 60] = -np.inf
+    a = np.zeros((200, 4))
+    a[3] = [10.0, 25.0, 0.0, 0.0]    # a 0.2 row, mid-loading: refused
+    a[4] = [-1.0, 0.0, 0.0, 0.0]     # no history
+    b = a.copy()
+    out_a, out_b = np.empty_like(w), np.empty_like(w)
+    _both(data.law_rows, data.law_rows.shape[0] - 1, data.w_max, w, a, b, out_a, out_b)
+    np.testing.assert_array_equal(out_a, out_b)
+    np.testing.assert_array_equal(a, b)
+    assert np.isnan(out_a[3]).all() and np.isnan(out_a[4]).all()
+    assert (out_a[~np.isnan(out_a)] >= 0.0).all() and np.isfinite(out_a).any()
