@@ -55,8 +55,7 @@ from .loading import p_star_above, resolve as resolve_loading
 from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import ForwardData, P_table_forward, forward_data, loss_forward
-from .interpolation import select
-from .law_cells import law_step, law_step_branching
+from .law_cells import law_step, law_step_branching, material_law
 from .limits import interference_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
 from .scene import material_index
 from . import unloading as _unloading
@@ -278,13 +277,9 @@ def contact_force_stacked(laws, material, state, w):
     >>> contact_force_stacked(laws, 2, steel.new_state(), 10.0)  # no material 2
     nan
     """
-    first, last, w_end = laws.law_first, laws.law_last, laws.w_max
-    n = first.size
-    k = material_index(material)  # -1 for a fraction, a negative or non-finite index
-    ok = select(k >= 0, select(k < n, 1, 0), 0)
-    k = select(ok == 1, k, 0)  # read material 0's fields for a bad index, then NaN
-    end = select(ok == 1, w_end[k], math.nan)
-    return law_step(laws.law_rows, first[k], last[k], end, state, np.float64(w))
+    # material_index: -1 for a fraction, a negative or non-finite index (then NaN, no branch)
+    first, last, end = material_law(laws.law_first, laws.law_last, laws.w_max, material_index(material))
+    return law_step(laws.law_rows, first, last, end, state, np.float64(w))
 
 
 @jit(inline=True)

@@ -39,7 +39,7 @@ from .loading.jackson_green import W_SWITCH
 from .unloading import residual
 
 __all__ = ["LAW_ROW", "LAW_BITS_PER_OCTAVE", "KEY_ONE", "law_rows", "law_row", "virgin", "elastic_back",
-           "outside", "law_step", "law_step_branching"]
+           "outside", "material_law", "law_step", "law_step_branching"]
 
 #: float64 per row: center, 1/half_width, six coefficients of P*, six of delta, two zeros.
 LAW_ROW = 16
@@ -137,6 +137,15 @@ def outside(w_end, w_max, delta, w):
     bad = select(w > -math.inf, bad, math.nan)
     bad = select(w_max >= 0.0, bad, math.nan)
     return select(delta > 0.0, bad, select(w_max == 0.0, bad, math.nan))
+
+
+@jit(inline=True)
+def material_law(first, last, w_end, k):
+    """(first row, last row offset, end) of material ``k`` of stacked laws; for k outside
+    0 .. n - 1 material 0's rows with the end NaN (every step then gives NaN), no branch."""
+    ok = select(k >= 0, select(k < first.size, 1, 0), 0)
+    k = select(ok == 1, k, 0)
+    return first[k], last[k], select(ok == 1, w_end[k], math.nan)
 
 
 @jit(inline=True)
