@@ -486,6 +486,11 @@ def _f_march(nodes, eps_y, nu, law, et_ratio, out):
         w_prev = nodes[i]
 
 
+#: ``law_rows`` of a ForwardData built with ``contact_cells=False``: one row of NaN.
+_NO_LAW_ROWS = np.full((1, 16), np.nan)
+_NO_LAW_ROWS.flags.writeable = False
+
+
 def _is_number(x):
     return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
 
@@ -493,7 +498,7 @@ def _is_number(x):
 @keyword_only("w_max", old=lambda args: _is_number(args[2]))
 def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: float, extrapolate: bool = False,
                  bits_per_octave: int = BITS_PER_OCTAVE, et_ratio: float = 0.0,
-                 loading: str | None = None) -> ForwardData:
+                 loading: str | None = None, contact_cells: bool = True) -> ForwardData:
     """Tabulate the forward map of one material up to interference ``w_max``.
 
     Parameters
@@ -519,6 +524,10 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
         Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
     loading : {None, "jackson-green", "ghaednia"}, optional
         The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``.
+    contact_cells : bool, optional
+        Build ``law_rows``, the contact law's cells (:mod:`fastrest.law_cells`; default True).
+        False leaves one row of NaN there (``fastrest.jit.contact_force`` then gives NaN above
+        w = 1): for multi-asperity code that never steps a contact law, ~10 % faster to build.
 
     Returns
     -------
@@ -568,6 +577,7 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     if not (math.isfinite(w_max) and w_max >= 0.0):
         raise ValueError(f"w_max must be finite and >= 0 (normalised interference); got {w_max!r}")
     extrapolate = check_bool(extrapolate, "extrapolate")
+    contact_cells = check_bool(contact_cells, "contact_cells")
     et_ratio = real_scalar(et_ratio, "et_ratio")
     law = resolve_loading(loading, et_ratio)
     warn_if_unfitted(unloading, et_ratio)
@@ -578,7 +588,8 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     shift = MANTISSA_BITS - bits_per_octave
     if w_max <= W_SWITCH:  # closed forms only: one dummy cell
         return ForwardData(model, eps_y, nu, C, B, w_max, shift, 0, np.zeros((1, 8)), np.zeros((1, 8)), law.code,
-                           et_ratio, law_rows(np.zeros((0, 2)), np.zeros((0, 8)), eps_y, nu, model, law.code, et_ratio))
+                           et_ratio, law_rows(np.zeros((0, 2)), np.zeros((0, 8)), eps_y, nu, model, law.code, et_ratio)
+                           if contact_cells else _NO_LAW_ROWS)
     base, edges = cell_edges(W_SWITCH, w_max, bits_per_octave)
     # Serve whole bit-cells: the last cell ends at its natural boundary, not at w_max, so a table
     # built for a larger w_max holds bit-identical rows for every w both cover.
@@ -593,7 +604,7 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     f_rows = np.ascontiguousarray(fit_cells(edges, share_edges(f_vals.reshape(nodes.shape))))
     p_rows = np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
     return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows, law.code, et_ratio,
-                       law_rows(edges, p_rows, eps_y, nu, model, law.code, et_ratio))
+                       law_rows(edges, p_rows, eps_y, nu, model, law.code, et_ratio) if contact_cells else _NO_LAW_ROWS)
 
 
 def _forward_limit(eps_y, nu, *, extrapolate=False):

@@ -189,3 +189,15 @@ def test_branch_free_and_branching_steps_agree_bit_for_bit(model, et):
     np.testing.assert_array_equal(a, b)
     assert np.isnan(out_a[3]).all() and np.isnan(out_a[4]).all()
     assert (out_a[~np.isnan(out_a)] >= 0.0).all() and np.isfinite(out_a).any()
+
+
+def test_forward_data_without_contact_cells():
+    """Rough surfaces build their forward tables without the law's cells: the contact law then
+    gives NaN where it would read them (w > 1), never a number from missing rows."""
+    from fastrest import forward
+    d = forward.forward_data(0.005, 0.33, w_max=50.0, contact_cells=False)
+    assert np.isnan(d.law_rows).all()
+    assert frj.contact_force(d, np.zeros(4), 0.5) == 0.5 * math.sqrt(0.5)
+    assert math.isnan(frj.contact_force(d, np.zeros(4), 10.0))
+    with pytest.raises(TypeError, match="contact_cells"):
+        forward.forward_data(0.005, 0.33, w_max=50.0, contact_cells="no")

@@ -105,7 +105,8 @@ class ForwardCache:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)  # issued once, by the surface
                 data = fw.forward_data(self.eps_y, self.nu, unloading, w_max=min(max(w_max, 2.0), lim),
-                                       extrapolate=extrapolate, et_ratio=self.et_ratio, loading=self.loading)
+                                       extrapolate=extrapolate, et_ratio=self.et_ratio, loading=self.loading,
+                                       contact_cells=False)
             self._data[code] = data
         return data
 

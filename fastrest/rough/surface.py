@@ -305,7 +305,9 @@ class RoughSurface:
         -------
         ForwardData
             Loading energy, force and unloading of one summit, JGM eqs (9), (14), (19), (25),
-            (33)/(35), (38) (:mod:`fastrest.forward`), under the surface's loading law.
+            (33)/(35), (38) (:mod:`fastrest.forward`), under the surface's loading law; built
+            without the contact law's cells (``contact_cells=False``: for
+            ``fastrest.jit.contact_force`` build a law with :func:`fastrest.contact_law`).
 
         Raises
         ------
