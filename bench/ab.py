@@ -5,6 +5,7 @@ old checkout first on PYTHONPATH and once with this one, each in its own Numba c
 runs in a neutral directory: ``-c`` puts the working directory first on sys.path, which would
 shadow the old checkout with this one; the old worker's ``fastrest.__file__`` is checked.
 """
+import argparse
 import os
 import subprocess
 import sys
@@ -46,3 +47,28 @@ def revisions(old):
         return subprocess.run(["git", *args, "rev-parse", "--short", "HEAD"], capture_output=True,
                               text=True).stdout.strip()
     return rev("-C", str(old)), rev()
+
+
+def report_main(argv, prog, doc, title, worker, names, out, rounds=5):
+    """The command line of an old/new comparison: run ``worker`` interleaved against ``--old``,
+    write the Markdown table of ``names`` (one per number the worker prints) to ``out``."""
+    from .report import machine
+    p = argparse.ArgumentParser(prog=prog, description=doc)
+    p.add_argument("--old", required=True, help="checkout of the old fastrest (put first on PYTHONPATH)")
+    p.add_argument("--rounds", type=int, default=rounds)
+    a = p.parse_args(argv)
+    res = run_interleaved(a.old, a.rounds, worker)
+    med = medians(res, len(names))
+    m = machine()
+    rev, new = revisions(a.old)
+    lines = [f"# {title} (`{prog}`)", "",
+             f"Machine: {m.get('nproc')}-core {m.get('cpu')}; old = {rev or a.old}, new = {new or 'this checkout'}; "
+             f"{a.rounds} interleaved rounds (subprocesses, own Numba caches), median of the per-round bests.", "",
+             "| path | old | new | new/old |", "| --- | --- | --- | --- |"]
+    lines += [f"| {name} | {med['old'][j]:.3f} | {med['new'][j]:.3f} | {med['new'][j] / med['old'][j]:.3f} |"
+              for j, name in enumerate(names)]
+    lines += ["", "Rounds (old/new): " + "; ".join(
+        ", ".join(f"{o[j]:.2f}/{n[j]:.2f}" for j in range(len(names))) for o, n in zip(res["old"], res["new"]))]
+    Path(out).write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    return lines

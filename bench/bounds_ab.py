@@ -10,11 +10,9 @@ The table path (``e_star``) reads its rows through a pointer, for which the chec
 is not timed here. Each figure is the best of several repeats, the median over rounds. Writes
 bench/BOUNDS_AB.md.
 """
-import argparse
 from pathlib import Path
 
-from .ab import medians, revisions, run_interleaved
-from .report import machine
+from .ab import report_main
 
 WORKER = r'''
 import time
@@ -69,24 +67,8 @@ NAMES = ("`Curve.e`, 1e6 speeds (ns/point)", "`jit.e_curve` in a user loop (ns/p
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m bench.bounds_ab", description=__doc__)
-    p.add_argument("--old", required=True, help="checkout of the old fastrest (put first on PYTHONPATH)")
-    p.add_argument("--rounds", type=int, default=5)
-    a = p.parse_args(argv)
-    res = run_interleaved(a.old, a.rounds, WORKER)
-    med = medians(res, len(NAMES))
-    m = machine()
-    rev, new = revisions(a.old)
-    lines = ["# Row bounds check in the cell polynomials: old against new (`python -m bench.bounds_ab`)", "",
-             f"Machine: {m.get('nproc')}-core {m.get('cpu')}; old = {rev or a.old}, new = {new or 'this checkout'}; "
-             f"{a.rounds} interleaved rounds (subprocesses, own Numba caches), median of the per-round bests.", "",
-             "| path | old | new | new/old |", "| --- | --- | --- | --- |"]
-    lines += [f"| {name} | {med['old'][j]:.3f} | {med['new'][j]:.3f} | {med['new'][j] / med['old'][j]:.3f} |"
-              for j, name in enumerate(NAMES)]
-    lines += ["", "Rounds (old/new): " + "; ".join(
-        ", ".join(f"{o[j]:.2f}/{n[j]:.2f}" for j in range(len(NAMES))) for o, n in zip(res["old"], res["new"]))]
-    Path(__file__).with_name("BOUNDS_AB.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    report_main(argv, "python -m bench.bounds_ab", __doc__, "Row bounds check in the cell polynomials: old against new",
+                WORKER, NAMES, Path(__file__).with_name("BOUNDS_AB.md"))
 
 
 if __name__ == "__main__":

@@ -11,11 +11,9 @@ explicit summits and with a statistical (GW) surface (both read ``ForwardData``)
 ``Curve.e`` on 1e6 speeds (untouched: the control). Each figure is the best of several repeats,
 the median over rounds. Writes bench/LAW_AB.md.
 """
-import argparse
 from pathlib import Path
 
-from .ab import medians, revisions, run_interleaved
-from .report import machine
+from .ab import report_main
 
 WORKER = r'''
 import time
@@ -59,24 +57,8 @@ NAMES = ("`fastrest.contact_law(...)` build (ms)", "`ContactLaw.force`, 1e5-step
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m bench.law_ab", description=__doc__)
-    p.add_argument("--old", required=True, help="checkout of the old fastrest (put first on PYTHONPATH)")
-    p.add_argument("--rounds", type=int, default=5)
-    a = p.parse_args(argv)
-    res = run_interleaved(a.old, a.rounds, WORKER)
-    med = medians(res, len(NAMES))
-    m = machine()
-    rev, new = revisions(a.old)
-    lines = ["# The branch-free contact law: other paths, old against new (`python -m bench.law_ab`)", "",
-             f"Machine: {m.get('nproc')}-core {m.get('cpu')}; old = {rev or a.old}, new = {new or 'this checkout'}; "
-             f"{a.rounds} interleaved rounds (subprocesses, own Numba caches), median of the per-round bests.", "",
-             "| path | old | new | new/old |", "| --- | --- | --- | --- |"]
-    lines += [f"| {name} | {med['old'][j]:.3f} | {med['new'][j]:.3f} | {med['new'][j] / med['old'][j]:.3f} |"
-              for j, name in enumerate(NAMES)]
-    lines += ["", "Rounds (old/new): " + "; ".join(
-        ", ".join(f"{o[j]:.2f}/{n[j]:.2f}" for j in range(len(NAMES))) for o, n in zip(res["old"], res["new"]))]
-    Path(__file__).with_name("LAW_AB.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    report_main(argv, "python -m bench.law_ab", __doc__, "The branch-free contact law: other paths, old against new",
+                WORKER, NAMES, Path(__file__).with_name("LAW_AB.md"))
 
 
 if __name__ == "__main__":
