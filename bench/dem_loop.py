@@ -348,7 +348,8 @@ def main(argv=None):
     targets = []
     for n, nsteps in ((10**4, steps_small), (10**6, steps_big)):
         t, loops = measure(n, nsteps, rounds)
-        L += [f"## The issue's loop: {n:.0e} contacts, serial ({'cache-resident' if n < 10**5 else 'not cache-resident'})",
+        where = "cache-resident" if n < 10**5 else "not cache-resident"
+        L += [f"## The issue's loop: {n:.0e} contacts, serial ({where})",
               "", "Path -> force -> out[i], nothing else in the loop (the Hertz loop vectorises).", ""]
         L += table(t, loops)
         targets.append((net(t, "contact_force (jcg)", "hertz")[0],
