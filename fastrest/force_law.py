@@ -150,7 +150,7 @@ def contact_force(law, state, w):
     up to w = 1.9 (JGM eq 14) and eq (9) above (Ghaednia et al.'s with hardening,
     ``law.et_ratio`` > 0), from the cells of ``law.p_rows`` (~1e-14 relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
     maximum point and the unloading model's residual interference (eq 35, eqs 33-34 or Brake's,
-    read from cells beside P*'s to ~1e-15 and stored with w_max at every loading step);
+    read from cells beside P*'s to 3.3e-14 and stored with w_max at every loading step);
     0 at or below w_res*. No branch: every case is computed and one chosen by selects
     (:mod:`fastrest.law_cells`), so a step-major DEM loop does not mispredict
     (bench/DEM_LOOP.md). See docs/model.md section 10. Inlined into the calling jitted loop; also
