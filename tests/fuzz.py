@@ -338,9 +338,10 @@ def classify(case, targets):
         want = _expected_type(label, params[p])
         if want is not None and not isinstance(exc, want):
             return "unclear", f"{type(exc).__name__} (want {want.__name__}): {msg[:300]}"
-        if _CLI_OPTION.search(msg):
+        own = msg.replace(repr(kwargs[p]), "") if isinstance(kwargs[p], (str, bytes)) else msg  # the value quoted back
+        if _CLI_OPTION.search(own):
             return "unclear", f"names a CLI option in a Python call: {msg[:300]}"
-        if _LEAKED.search(msg):
+        if _LEAKED.search(own):
             return "unclear", f"passes on an internal exception: {msg[:300]}"
         return ("clear", msg[:300]) if _names_param(msg, p) else ("unclear", f"{type(exc).__name__}: {msg[:300]}")
     except Exception as exc:

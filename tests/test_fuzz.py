@@ -154,3 +154,17 @@ def test_hypothesis_values(target, data, value):
     finally:
         del fuzz.NOT_NUMBERS["_hyp"]
     assert outcome in ("clear", "accepted"), (target, p, value, outcome, detail)
+
+
+def test_a_value_quoted_back_is_not_a_cli_option():
+    """A str value that looks like an option ('--A', found by hypothesis) is quoted back by the
+    message: the message itself names no CLI option, and is clear."""
+    global _TARGETS
+    if _TARGETS is None:
+        _TARGETS = _fast_targets()
+    fuzz.NOT_NUMBERS["_hyp"] = "--A"
+    try:
+        outcome, detail = fuzz.classify(("Curve.e", "v1_star", "_hyp", "error"), _TARGETS)
+    finally:
+        del fuzz.NOT_NUMBERS["_hyp"]
+    assert outcome == "clear", detail
