@@ -22,7 +22,8 @@ starts there; Etsion's and Brake's are 0 under Hertz loading, delta = w) and is 
 delta is interpolated to 3.3e-14 relative of the unloading model's formula (eq 35, eqs 33-34,
 Brake's; the worst of a search over every cell, tests/test_law_cells.py), the level of the P*
 cells; the unloading force P_max s^1.5, s = (w - w_res*)/delta, moves by 1.5 (1 - s)/s of it:
-within 1e-12 relative for s >= 0.05 and 2e-14 of P_max everywhere (docs/model.md section 10).
+within 1e-12 relative for s >= 0.1 (9.4e-13 at 0.05) and 2e-14 of P_max everywhere
+(docs/model.md section 10).
 """
 from __future__ import annotations
 
@@ -48,6 +49,7 @@ LAW_BITS_PER_OCTAVE = 5
 _SHIFT = MANTISSA_BITS - LAW_BITS_PER_OCTAVE
 #: Cell key of w = 1, where the rows start.
 KEY_ONE = cell_key(1.0, LAW_BITS_PER_OCTAVE)
+_TINY = 2.2250738585072014e-308
 
 
 @jit
@@ -117,6 +119,9 @@ def virgin(rows, first, last, w):
     p_cell = estrin5(u, rows[i, 2], rows[i, 3], rows[i, 4], rows[i, 5], rows[i, 6], rows[i, 7])
     d_cell = estrin5(u, rows[i, 8], rows[i, 9], rows[i, 10], rows[i, 11], rows[i, 12], rows[i, 13])
     w_pos = select(w > 0.0, w, 0.0)
+    # delta > 0 always: at JCG's end (w* = 10017.5, extrapolating) the formula's 0 may interpolate
+    # to <= 0, which would read as no history; the smallest normal double unloads at once instead
+    d_cell = select(d_cell > 0.0, d_cell, _TINY)
     return select(w <= W_SWITCH, w_pos * math.sqrt(w_pos), p_cell), select(w <= 1.0, w, d_cell)
 
 
