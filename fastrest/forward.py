@@ -61,7 +61,7 @@ from .loading.jackson_green import W_SWITCH, area_exponent
 from .critical import c_of_nu
 from .energy import F_SWITCH, law_integral
 from .loading import p_star_above, resolve as resolve_loading
-from .law_cells import law_rows
+from .law_cells import LAW_BITS_PER_OCTAVE, LAW_ROW, law_rows
 from .limits import interference_limit, raise_interference_out_of_range, w_upper_model
 from .interpolation import (MANTISSA_BITS, cell_edges, cell_index, cell_polynomial,
                             chebyshev_nodes, fit_cells, row_polynomial, share_edges)
@@ -487,7 +487,7 @@ def _f_march(nodes, eps_y, nu, law, et_ratio, out):
 
 
 #: ``law_rows`` of a ForwardData built with ``contact_cells=False``: one row of NaN.
-_NO_LAW_ROWS = np.full((1, 16), np.nan)
+_NO_LAW_ROWS = np.full((1, LAW_ROW), np.nan)
 _NO_LAW_ROWS.flags.writeable = False
 
 
@@ -588,23 +588,49 @@ def forward_data(eps_y: float, nu: float, unloading: str = "jcg", *, w_max: floa
     shift = MANTISSA_BITS - bits_per_octave
     if w_max <= W_SWITCH:  # closed forms only: one dummy cell
         return ForwardData(model, eps_y, nu, C, B, w_max, shift, 0, np.zeros((1, 8)), np.zeros((1, 8)), law.code,
-                           et_ratio, law_rows(np.zeros((0, 2)), np.zeros((0, 8)), eps_y, nu, model, law.code, et_ratio)
-                           if contact_cells else _NO_LAW_ROWS)
-    base, edges = cell_edges(W_SWITCH, w_max, bits_per_octave)
-    # Serve whole bit-cells: the last cell ends at its natural boundary, not at w_max, so a table
-    # built for a larger w_max holds bit-identical rows for every w both cover.
-    end_key = np.array([base + edges.shape[0]], dtype=np.int64) << np.int64(shift)
-    edges[-1, 1] = end_key.view(np.float64)[0]
+                           et_ratio, _contact_rows(contact_cells, w_max, None, None, eps_y, nu, model, law.code,
+                                                   et_ratio))
+    base, edges = _whole_cells(w_max, bits_per_octave)
     nodes = chebyshev_nodes(edges)
-    flat = np.ascontiguousarray(nodes.ravel())
     f_vals = np.empty(nodes.size)
-    _f_march(flat, eps_y, nu, law.code, et_ratio, f_vals)
-    p_vals = np.empty(nodes.size)
-    _p_nodes(flat, eps_y, nu, law.code, et_ratio, p_vals)
+    _f_march(np.ascontiguousarray(nodes.ravel()), eps_y, nu, law.code, et_ratio, f_vals)
     f_rows = np.ascontiguousarray(fit_cells(edges, share_edges(f_vals.reshape(nodes.shape))))
-    p_rows = np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
+    p_rows = _p_rows(edges, eps_y, nu, law.code, et_ratio)
     return ForwardData(model, eps_y, nu, C, B, w_max, shift, int(base), f_rows, p_rows, law.code, et_ratio,
-                       law_rows(edges, p_rows, eps_y, nu, model, law.code, et_ratio) if contact_cells else _NO_LAW_ROWS)
+                       _contact_rows(contact_cells, w_max, edges if bits_per_octave == LAW_BITS_PER_OCTAVE else None,
+                                     p_rows, eps_y, nu, model, law.code, et_ratio))
+
+
+def _whole_cells(w_max, bits_per_octave):
+    """(base key, edges) of the bit-cells from 1.9 up to w_max, the last one whole: it ends at its
+    natural boundary, not at w_max, so a table built for a larger w_max holds bit-identical rows
+    for every w both cover."""
+    base, edges = cell_edges(W_SWITCH, w_max, bits_per_octave)
+    end_key = np.array([base + edges.shape[0]], dtype=np.int64) << np.int64(MANTISSA_BITS - bits_per_octave)
+    edges[-1, 1] = end_key.view(np.float64)[0]
+    return base, edges
+
+
+def _p_rows(edges, eps_y, nu, law, et_ratio):
+    """Rows of P* (eq 9 or the hardening law) on ``edges``."""
+    nodes = chebyshev_nodes(edges)
+    p_vals = np.empty(nodes.size)
+    _p_nodes(np.ascontiguousarray(nodes.ravel()), eps_y, nu, law, et_ratio, p_vals)
+    return np.ascontiguousarray(fit_cells(edges, share_edges(p_vals.reshape(nodes.shape))))
+
+
+def _contact_rows(contact_cells, w_max, edges, p_rows, eps_y, nu, model, law, et_ratio):
+    """``ForwardData.law_rows``: the NaN placeholder without ``contact_cells``; else the law's
+    cells, which are always 2^LAW_BITS_PER_OCTAVE per octave: ``edges``/``p_rows`` when the table
+    has those cells (None otherwise: the P* cells are fitted again at the law's width)."""
+    if not contact_cells:
+        return _NO_LAW_ROWS
+    if w_max <= W_SWITCH:
+        return law_rows(np.zeros((0, 2)), np.zeros((0, 8)), eps_y, nu, model, law, et_ratio)
+    if edges is None:
+        _, edges = _whole_cells(w_max, LAW_BITS_PER_OCTAVE)
+        p_rows = _p_rows(edges, eps_y, nu, law, et_ratio)
+    return law_rows(edges, p_rows, eps_y, nu, model, law, et_ratio)
 
 
 def _forward_limit(eps_y, nu, *, extrapolate=False):

@@ -316,3 +316,14 @@ def test_forward_data_without_contact_cells():
     assert math.isnan(frj.contact_force(d, np.zeros(4), 10.0))
     with pytest.raises(TypeError, match="contact_cells"):
         forward.forward_data(0.005, 0.33, w_max=50.0, contact_cells="no")
+
+
+@pytest.mark.parametrize("bits", [4, 6])
+def test_law_cells_do_not_follow_the_tables_cell_width(bits):
+    """The law's cells are always 2^5 per octave (its index is fixed): a forward table of another
+    width still carries them, not its own cells read at the wrong index."""
+    from fastrest import forward
+    base = forward.forward_data(0.005, 0.33, "etsion", w_max=50.0)
+    other = forward.forward_data(0.005, 0.33, "etsion", w_max=50.0, bits_per_octave=bits)
+    np.testing.assert_array_equal(other.law_rows, base.law_rows)
+    assert frj.contact_force(other, np.zeros(4), 10.0) == frj.contact_force(base, np.zeros(4), 10.0)
