@@ -50,12 +50,6 @@ cd = c.data
 loop_curve(cd, v[:10]); c.e(v[:10]); s.e(v[:10], k[:10])
 steps(law.data, np.zeros((10, frj.STATE_SIZE)), w_peak[:10], 4)
 
-def best(f, n):
-    t = []
-    for _ in range(n):
-        a = time.perf_counter(); f(); t.append(time.perf_counter() - a)
-    return min(t)
-
 def run_steps():
     steps(law.data, np.zeros((w_peak.size, frj.STATE_SIZE)), w_peak, n_steps)
 

@@ -36,12 +36,6 @@ from fastrest.force_law import _force_path
 out = np.empty(path.size)
 _force_path(law.data, np.zeros(4), path[:10], out)
 
-def best(f, n):
-    t = []
-    for _ in range(n):
-        a = time.perf_counter(); f(); t.append(time.perf_counter() - a)
-    return min(t)
-
 print(best(lambda: fastrest.contact_law(0.005, 0.3), 5) * 1e3,
       best(lambda: law.force(path), 5) / path.size * 1e9,
       best(lambda: _force_path(law.data, np.zeros(4), path, out), 5) / path.size * 1e9,
