@@ -227,61 +227,60 @@ def remarks_of_law_loop():
     return seen
 
 
-def measure(n, nsteps, rounds, parallel=False, names=None, threads=None, turnover=False):
-    phase, rate, lo, hi0 = contacts(n)
-    lw, st = laws(), stacked()
-    mat = np.random.default_rng(2).integers(0, 3, n)
-    zero = np.zeros(n, dtype=np.int64)
-    cases, loops = {}, {}
-    plan = [("empty", "empty", None), ("hertz", "hertz", None)]
-    plan += [(f"contact_force ({k})", "law", k) for k in lw]
-    plan += [("contact_force_stacked (3 materials)", "stacked", None), ("0.2 kernel (jcg)", "old", "jcg")]
-    for name, kind, which in plan:
-        if names is not None and kind not in names:
-            continue
+class _Contacts:
+    """The contacts of one measurement: paths, laws, material indices."""
+
+    def __init__(self, n):
+        self.n = n
+        self.path = contacts(n)
+        self.laws, self.stacked = laws(), stacked()
+        self.mat = np.random.default_rng(2).integers(0, 3, n)
+        self.zero = np.zeros(n, dtype=np.int64)
+
+    def case(self, kind, which, nsteps, parallel, turnover, threads):
+        """(compiled loop, (fn, evaluations)) of one step loop; fn runs ``nsteps`` steps of every
+        contact. With turnover the paths go on from call to call (the mix of states stays that of
+        a running flow, rows reset inside the loop); without, every call zeroes the rows first, and
+        every contact starts virgin at its own point of its path."""
         run = step_loop(FORCES[kind], parallel, turnover)
-        loops[name] = run
-        data = st if kind == "stacked" else lw[which or "jcg"]
-        state = np.zeros((n, 1 if kind in ("hertz", "empty") else frj.STATE_SIZE))
-        out = np.zeros(n)
-        m = mat if kind == "stacked" else zero
+        data = self.stacked if kind == "stacked" else self.laws[which or "jcg"]
+        state = np.zeros((self.n, 1 if kind in ("hertz", "empty") else frj.STATE_SIZE))
+        out = np.zeros(self.n)
+        m = self.mat if kind == "stacked" else self.zero
         clock = [0]
 
-        def fn(run=run, data=data, m=m, state=state, out=out, clock=clock):
-            if turnover:  # paths go on: the mix of states stays that of a running flow
-                run(clock[0], nsteps, phase, rate, lo, hi0, data, m, state, out)
+        def fn():
+            if turnover:
+                run(clock[0], nsteps, *self.path, data, m, state, out)
                 clock[0] += nsteps
-            else:  # every contact starts virgin at its own point of its path
+            else:
                 state[:] = 0.0
-                run(0, nsteps, phase, rate, lo, hi0, data, m, state, out)
-        cases[name] = (with_threads(threads, fn) if threads else fn, n * nsteps)
-    t = interleaved(cases, rounds, ref="empty")
-    return t, loops
+                run(0, nsteps, *self.path, data, m, state, out)
+        return run, (with_threads(threads, fn) if threads else fn, self.n * nsteps)
+
+
+def measure(n, nsteps, rounds, turnover=False):
+    """Every loop of the plan, serial, in one interleaved run: ({name: Timing}, {name: loop})."""
+    c = _Contacts(n)
+    plan = [("empty", "empty", None), ("hertz", "hertz", None)]
+    plan += [(f"contact_force ({k})", "law", k) for k in c.laws]
+    plan += [("contact_force_stacked (3 materials)", "stacked", None), ("0.2 kernel (jcg)", "old", "jcg")]
+    cases, loops = {}, {}
+    for name, kind, which in plan:
+        loops[name], cases[name] = c.case(kind, which, nsteps, False, turnover, None)
+    return interleaved(cases, rounds, ref="empty"), loops
 
 
 def prange_measure(n, nsteps, rounds, threads):
     """Serial and prange loops of the same kinds in one interleaved run (with contact turnover: the
     rows are reset inside the loop, so nothing serial runs outside it)."""
-    phase, rate, lo, hi0 = contacts(n)
-    lw, st = laws(), stacked()
-    mat = np.random.default_rng(2).integers(0, 3, n)
-    zero = np.zeros(n, dtype=np.int64)
+    c = _Contacts(n)
     cases = {}
     for name, kind in (("empty", "empty"), ("hertz", "hertz"), ("contact_force (jcg)", "law"),
                        ("contact_force_stacked (3 materials)", "stacked")):
         for parallel in (False, True):
-            run = step_loop(FORCES[kind], parallel, True)
-            data = st if kind == "stacked" else lw["jcg"]
-            state = np.zeros((n, 1 if kind in ("hertz", "empty") else frj.STATE_SIZE))
-            out = np.zeros(n)
-            m = mat if kind == "stacked" else zero
-            clock = [0]
-
-            def fn(run=run, data=data, m=m, state=state, out=out, clock=clock):
-                run(clock[0], nsteps, phase, rate, lo, hi0, data, m, state, out)  # no serial reset outside
-                clock[0] += nsteps
             label = f"{name} | {'prange' if parallel else 'serial'}"
-            cases[label] = (with_threads(threads, fn) if parallel else fn, n * nsteps)
+            cases[label] = c.case(kind, None, nsteps, parallel, True, threads if parallel else None)[1]
     return interleaved(cases, rounds, ref="empty | serial")
 
 
