@@ -291,6 +291,9 @@ def main(argv: list[str] | None = None) -> int:
     from .export.cli import add_parser as add_export_parser
 
     add_export_parser(sub)
+    from .lammps.cli import add_parser as add_lammps_parser
+
+    add_lammps_parser(sub)
 
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
     for parser in (p, pe, pb, pi, pw, pf):

@@ -60,8 +60,35 @@ def cli_names(names: dict[str, str], out: str | None = "--out") -> Iterator[None
         raise type(exc)(msg) from None
 
 
+def _cmd_law(args):
+    from ..force_law import contact_law
+    from . import c_header, law_c
+
+    path = args.out or "fastrest_law.h"
+    with cli_names({"materials": "--materials", "path": "--out", "w_max": "--w-max", "unloading": "--unloading"}):
+        if args.materials is None:
+            raise ValueError("--law needs --materials EPS_Y:NU[:ET_RATIO] ... (normalised materials)")
+        given = [k for k in ("V_max", "v_max", "pairs", *_PAIR_OPTIONS) if getattr(args, k, None) is not None]
+        if given:
+            raise ValueError("--law takes --materials, --unloading and --w-max only")
+        materials = c_header.parse_materials(args.materials)
+        _check_materials(args.materials, materials)
+        laws = [contact_law(m[0], m[1], args.unloading or "jcg", w_max=args.w_max,
+                            et_ratio=m[2] if len(m) == 3 else 0.0) for m in materials]
+        out = law_c.write_law_header(path, laws, command=_command(args))
+    print(f"wrote {out} ({len(laws)} contact laws, {args.unloading or 'jcg'} unloading)")
+    return 0
+
+
 def _cmd_c(args):
     from . import c_header, velocity
+
+    if args.law:
+        return _cmd_law(args)
+    if args.unloading is not None or args.w_max is not None:
+        raise ValueError("--unloading and --w-max go with --law")
+    if args.out is None:
+        args.out = "fastrest_scene.h"
 
     names = {"v_max": "--v-max", "V_max": "--V-max", "materials": "--materials", "path": "--out"}
     physical = args.pairs is not None or any(getattr(args, k) is not None for k in _PAIR_OPTIONS)
@@ -273,6 +300,13 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argp
                          "V_max column overrides it) [default: each pair's w_m* = 425 speed]")
     pc.add_argument("--v-max", dest="v_max", type=float, metavar="V1_STAR",
                     help="largest V1* of every --materials material [default: each material's w_m* = 425 speed]")
-    pc.add_argument("--out", default="fastrest_scene.h", help="output header [default: fastrest_scene.h]")
+    pc.add_argument("--law", action="store_true",
+                    help="write the contact law with its history instead (fastrest_law_step(rows, first, last, "
+                         "w_end, state, w), translated from fastrest.jit.contact_force, and each --materials "
+                         "material's rows); takes --materials, --unloading, --w-max")
+    pc.add_argument("--unloading", choices=list(MODELS), help="with --law: the unloading model [default: jcg]")
+    pc.add_argument("--w-max", dest="w_max", type=float, metavar="W_STAR",
+                    help="with --law: largest interference w* served [default: the model's end, 425]")
+    pc.add_argument("--out", default=None, help="output header [default: fastrest_scene.h; with --law: fastrest_law.h]")
     pc.set_defaults(func=_cmd_c)
     return px

