@@ -4,7 +4,8 @@ The C functions are translated from the jit law's source (fastrest/export/law_c.
 without contraction they must give the jit law's forces and history rows bit for bit (the issue
 asks <= 2 ulp; any difference fails here) on load/unload/reload histories through every case:
 virgin loading below and above w* = 1 and 1.9, cell edges +-1 ulp, unloading, reloading,
-apart, NaN, -inf, past the end, and rows that are no history.
+apart, NaN, -inf, past the end, and rows that are no history; law_step_branching (if/else, a
+chained assignment), translated the same way, too. The translator refuses what it cannot follow.
 """
 import ctypes
 import shutil
@@ -15,20 +16,25 @@ import numpy as np
 import pytest
 
 import fastrest
+from fastrest import interpolation
 from fastrest import jit as frj
+from fastrest import law_cells
 from fastrest.export.law_c import LawTranslationError, law_header_text, law_source, translate
 
 _DRIVER = r"""
 #include "law.h"
-void run(const double *w, long n, int k, double *state, double *out, double *states)
+#include "branching.h"
+void run(const double *w, long n, int k, int branching, double *state, double *out, double *states)
 {
     for (long i = 0; i < n; ++i) {
-        out[i] = fastrest_law_step(fastrest_law_rows[0], fastrest_law_first[k], fastrest_law_last[k],
-                                   fastrest_law_w_end[k], state, w[i]);
+        out[i] = (branching ? fastrest_law_step_branching : fastrest_law_step)(
+            fastrest_law_rows[0], fastrest_law_first[k], fastrest_law_last[k], fastrest_law_w_end[k], state, w[i]);
         for (int j = 0; j < FASTREST_STATE_SIZE; ++j) states[i * FASTREST_STATE_SIZE + j] = state[j];
     }
 }
 """
+_I = "FASTREST_INT64"
+_STEP_TYPES = ["const double *", _I, _I, "double", "double *", "double"]
 
 LAWS = [(0.005, 0.33, "jcg", 0.0), (0.002, 0.3, "etsion", 0.0), (0.008, 0.25, "brake", 0.0),
         (0.003, 0.3, "brake", 0.01)]
@@ -66,21 +72,25 @@ def compiled(tmp_path_factory):
     laws = [fastrest.contact_law(e, n, u, et_ratio=h) for e, n, u, h in LAWS]
     d = tmp_path_factory.mktemp("law")
     (d / "law.h").write_text(law_header_text(laws))
+    # law_step_branching (if/else, chained assignment) through the same translator: the same values
+    (d / "branching.h").write_text(translate(law_cells.law_step_branching, "fastrest_law_step_branching",
+                                             _STEP_TYPES, "double") + "\n")
     (d / "driver.c").write_text(_DRIVER)
     lib = d / "law.so"
     subprocess.run(["gcc", "-std=c99", "-O2", "-ffp-contract=off", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC",
                     "-I", str(d), str(d / "driver.c"), "-o", str(lib), "-lm"], check=True, capture_output=True)
     so = ctypes.CDLL(str(lib))
     p = ctypes.POINTER(ctypes.c_double)
-    so.run.argtypes = [p, ctypes.c_long, ctypes.c_int, p, p, p]
+    so.run.argtypes = [p, ctypes.c_long, ctypes.c_int, ctypes.c_int, p, p, p]
     return laws, so, d
 
 
-def _c_run(so, k, w, state):
+def _c_run(so, k, w, state, branching=0):
     out = np.empty(w.size)
     states = np.empty((w.size, frj.STATE_SIZE))
     p = ctypes.POINTER(ctypes.c_double)
-    so.run(w.ctypes.data_as(p), w.size, k, state.ctypes.data_as(p), out.ctypes.data_as(p), states.ctypes.data_as(p))
+    so.run(w.ctypes.data_as(p), w.size, k, branching, state.ctypes.data_as(p), out.ctypes.data_as(p),
+           states.ctypes.data_as(p))
     return out, states
 
 
@@ -94,11 +104,12 @@ def test_c_law_equals_jit_law_bit_for_bit(compiled, k):
                   np.array([np.nan, 0, 0, 0])):
         ref_out, ref_states = np.empty(w.size), np.empty((w.size, 4))
         _jit_run(law.data, w, start.copy(), ref_out, ref_states)
-        out, states = _c_run(so, k, w, start.copy())
-        same = (out == ref_out) | (np.isnan(out) & np.isnan(ref_out))
-        assert same.all(), (w[~same][:5], out[~same][:5], ref_out[~same][:5])
-        same = (states == ref_states) | (np.isnan(states) & np.isnan(ref_states))
-        assert same.all()
+        for branching in (0, 1):
+            out, states = _c_run(so, k, w, start.copy(), branching)
+            same = (out == ref_out) | (np.isnan(out) & np.isnan(ref_out))
+            assert same.all(), (branching, w[~same][:5], out[~same][:5], ref_out[~same][:5])
+            same = (states == ref_states) | (np.isnan(states) & np.isnan(ref_states))
+            assert same.all(), branching
     # the history went through loading, unloading with force, apart, and NaN at the end
     ref_out = np.empty(w.size)
     _jit_run(law.data, w, np.zeros(4), ref_out, np.empty((w.size, 4)))
@@ -139,10 +150,57 @@ def _call_unknown(w, first, last):
     return np.exp(w)
 
 
-@pytest.mark.parametrize("fn,what", [(_while_loop, "the statement While"), (_call_unknown, "the call np.exp")])
+def _plain_division(w, first, last):
+    return w / 2.0  # Numba raises ZeroDivisionError on 0, C gives inf: fdiv says which
+
+
+def _unsigned_with_signed(w, first, last):
+    i = np.uint64(first)
+    return i + last  # float64 in Numba, uint64 in C
+
+
+def _local_of_an_if(w, first, last):
+    if w > 1.0:
+        x = w
+    else:
+        x = 1.0
+    return x  # C's x ended with each block
+
+
+def _wrong_argument_type(w, first, last):
+    return law_cells.law_row(w, w, last)  # Numba would compile another law_row for a double
+
+
+def _c_word(w, first, last):
+    default = w
+    return default
+
+
+def _int_return(w, first, last):
+    return first  # declared double: C would convert where Numba returns an int64
+
+
+def _chained_compare(w, first, last):
+    return interpolation.select(0.0 < w < 1.0, w, 0.0)
+
+
+@pytest.mark.parametrize("fn,what", [(_while_loop, "the statement While"), (_call_unknown, "the call np.exp"),
+                                     (_plain_division, "the expression 'w / 2.0'"),
+                                     (_unsigned_with_signed, "mixing uint64 and int64"),
+                                     (_local_of_an_if, "the name 'x'"),
+                                     (_wrong_argument_type, "law_row with arguments"),
+                                     (_c_word, "the local name 'default'"), (_chained_compare, "0.0 < w < 1.0"),
+                                     (_int_return, "a return as double of C type 'FASTREST_INT64'")])
 def test_translator_refuses_what_it_does_not_know(fn, what):
-    with pytest.raises(LawTranslationError, match=what):
-        translate(fn, "f", ["double", "FASTREST_INT64", "FASTREST_INT64"], "double")
+    with pytest.raises(LawTranslationError, match=what) as err:
+        translate(fn, "f", ["double", _I, _I], "double")
+    assert f"{fn.__name__}, line " in str(err.value)
+
+
+def test_translator_refuses_material_law():
+    # material_law reads first.size: not in the subset (the C header's tables carry FASTREST_N_LAWS)
+    with pytest.raises(LawTranslationError, match="first.size"):
+        translate(law_cells.material_law, "m", ["const FASTREST_INT64 *", _I, _I, _I], "double")
 
 
 def test_cli_writes_the_law_header(tmp_path):
@@ -165,3 +223,23 @@ def test_docstring_examples_run():
 
     result = doctest.testmod(law_c, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
+
+
+@pytest.mark.cuda   # CI's `-m cuda` run has the gpu extra, whose wheels bring libnvrtc
+def test_law_header_compiles_with_nvrtc(tmp_path):
+    """NVRTC (no system header) compiles the law header and a kernel stepping contacts, without a
+    warning, with --fmad=false (bit for bit with the jit law)."""
+    from tests.test_export_c import _nvrtc, _nvrtc_compile
+
+    lib = _nvrtc()
+    if lib is None:
+        pytest.skip("NVRTC's library (libnvrtc) not found: `pip install nvidia-cuda-nvrtc`, or set FASTREST_NVRTC "
+                    "to the library's path")
+    text = law_header_text([fastrest.contact_law(0.005, 0.33, w_max=30.0)])
+    kernel = ('extern "C" __global__ void fastrest_kernel(double *s, const double *w, double *out, int n) {\n'
+              '  int i = blockIdx.x * blockDim.x + threadIdx.x;\n  if (i < n) out[i] = fastrest_law_step('
+              'FASTREST_ARRAY(fastrest_law_rows)[0], FASTREST_ARRAY(fastrest_law_first)[0], '
+              'FASTREST_ARRAY(fastrest_law_last)[0], FASTREST_ARRAY(fastrest_law_w_end)[0], s + 4 * i, w[i]);\n}\n')
+    rc, log, ptx = _nvrtc_compile(lib, text + kernel, ["--gpu-architecture=compute_90", "-std=c++14", "--fmad=false"])
+    assert rc == 0 and log.strip() == "", log
+    assert ".entry fastrest_kernel" in ptx and "fma.rn.f64" in ptx

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import ast
 import inspect
+import math
 import numbers
 import os
 import textwrap
@@ -59,23 +60,33 @@ _FUNCTIONS = [
     (law_cells.outside, "fastrest_law_outside", [D, D, D, D], D),
     (law_cells.law_step, "fastrest_law_step", ["const double *", I, I, D, "double *", D], D),
 ]
-_C_NAME = {f.py_func.__name__: (c, ret) for f, c, _, ret in _FUNCTIONS}
-_OPS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.RShift: ">>"}
+_OPS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.RShift: ">>"}  # no "/": Numba's raises on 0 (fdiv)
+_NUM = (D, I, U)
+# C/C++ words a local may not be named (and the temporaries' prefix, fastrest...)
+_RESERVED = set("""auto bool break case catch char class const continue default delete do double else enum
+extern float for goto if inline int long new operator private protected public register restrict return short
+signed sizeof static struct switch template this throw try typedef union unsigned void volatile while fma sqrt
+memcpy NAN INFINITY""".split())
 _CMP = {ast.Lt: "<", ast.LtE: "<=", ast.Gt: ">", ast.GtE: ">=", ast.Eq: "==", ast.NotEq: "!="}
 
 
 class _Function:
     """One function's translation: its locals' C types and its statements."""
 
-    def __init__(self, fn, params):
+    def __init__(self, fn, params, ret):
         self.fn = fn
         self.glob = fn.__globals__
         self.types = dict(params)
+        self.ret = ret
         self.tmp = 0
 
     def fail(self, node, what):
         raise LawTranslationError(f"{self.fn.__module__}.{self.fn.__name__}, line "
                                   f"{getattr(node, 'lineno', '?')}: {what} is not translated to C")
+
+    def need(self, node, got, allowed, what):
+        if got not in allowed:
+            self.fail(node, f"{what} of C type {got!r}")
 
     # --- expressions: (C text, C type) ---
     def expr(self, node):
@@ -87,21 +98,18 @@ class _Function:
             if node.id in self.glob and isinstance(self.glob[node.id], numbers.Number):
                 return self.number(node, self.glob[node.id])
             self.fail(node, f"the name {node.id!r}")
-        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "math":
-            if node.attr in ("nan", "inf"):
-                return ("FASTREST_NAN" if node.attr == "nan" else "FASTREST_INFINITY"), D
+        if isinstance(node, ast.Attribute) and self.resolve(node.value) is math and node.attr in ("nan", "inf"):
+            return ("FASTREST_NAN" if node.attr == "nan" else "FASTREST_INFINITY"), D
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
             text, ty = self.expr(node.operand)
+            self.need(node, ty, (D, I), "a negation")
             return f"(-{text})", ty
         if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
             (a, ta), (b, tb) = self.expr(node.left), self.expr(node.right)
-            if isinstance(node.op, ast.RShift) and D in (ta, tb):
-                self.fail(node, "a shift of a double")
-            if isinstance(node.op, ast.Div) and D not in (ta, tb):
-                self.fail(node, "an integer division")
-            return f"({a} {_OPS[type(node.op)]} {b})", (D if D in (ta, tb) else I)
+            return f"({a} {_OPS[type(node.op)]} {b})", self.promote(node, ta, tb, "an operand")
         if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _CMP:
-            (a, _), (b, _) = self.expr(node.left), self.expr(node.comparators[0])
+            (a, ta), (b, tb) = self.expr(node.left), self.expr(node.comparators[0])
+            self.promote(node, ta, tb, "a compared value")
             return f"({a} {_CMP[type(node.ops[0])]} {b})", B
         if isinstance(node, ast.Subscript):
             return self.subscript(node), D
@@ -109,57 +117,80 @@ class _Function:
             return self.call(node)
         self.fail(node, f"the expression {ast.unparse(node)!r}")
 
+    def resolve(self, node):
+        """The object a name or dotted name is bound to in the function's module (None: unbound)."""
+        if isinstance(node, ast.Attribute):
+            return getattr(self.resolve(node.value), node.attr, None)
+        return self.glob.get(node.id) if isinstance(node, ast.Name) and node.id not in self.types else None
+
+    def promote(self, node, ta, tb, what):
+        """The C type of arithmetic on ta and tb, where C's and Numba's agree (uint64 with int64:
+        float64 in Numba, uint64 in C; a shift: int64 only)."""
+        self.need(node, ta, _NUM, what)
+        self.need(node, tb, _NUM, what)
+        if isinstance(getattr(node, "op", None), ast.RShift) and (ta, tb) != (I, I):
+            self.fail(node, "a shift of other than two int64")
+        if U in (ta, tb) and D not in (ta, tb) and ta != tb:
+            self.fail(node, "arithmetic mixing uint64 and int64")
+        return D if D in (ta, tb) else ta
+
     def number(self, node, v):
-        if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
+        if isinstance(v, (bool, np.bool_, np.unsignedinteger)) or not isinstance(v, numbers.Real):
             self.fail(node, f"the constant {v!r}")
         if isinstance(v, numbers.Integral):
+            if not -2**63 <= int(v) < 2**63:
+                self.fail(node, f"the constant {v!r} (not an int64)")
             return f"FASTREST_INT64_C({int(v)})", I
         return _lit(v), D
 
     def subscript(self, node):
-        base = node.value
-        if not isinstance(base, ast.Name) or not self.types.get(base.id, "").endswith("double *"):
+        """rows[i, k] (a const double * parameter, LAW_ROW wide) or state[k] (a double * one)."""
+        base, idx = node.value, node.slice
+        kind = self.types.get(base.id) if isinstance(base, ast.Name) else None
+        elts = idx.elts if isinstance(idx, ast.Tuple) else [idx]
+        if (kind, len(elts)) not in (("const double *", 2), ("double *", 1)):
             self.fail(node, f"the subscript {ast.unparse(node)!r}")
-        idx = node.slice
-        if isinstance(idx, ast.Tuple) and len(idx.elts) == 2:
-            (i, _), (k, _) = self.expr(idx.elts[0]), self.expr(idx.elts[1])
-            return f"{base.id}[{i} * FASTREST_LAW_ROW + {k}]"
-        if isinstance(idx, ast.Tuple):
-            self.fail(node, f"the subscript {ast.unparse(node)!r}")
-        return f"{base.id}[{self.expr(idx)[0]}]"
+        text = []
+        for e in elts:
+            t, ty = self.expr(e)
+            self.need(e, ty, (I, U), "an index")
+            text.append(t)
+        return f"{base.id}[{text[0]} * FASTREST_LAW_ROW + {text[1]}]" if len(text) == 2 else f"{base.id}[{text[0]}]"
 
     def call(self, node):
         f = node.func
         if node.keywords:
             self.fail(node, "a keyword argument")
         args = [self.expr(a) for a in node.args]
-        text = [a for a, _ in args]
-        if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name):
-            if (f.value.id, f.attr) == ("math", "sqrt") and len(args) == 1:
-                return f"sqrt({text[0]})", D
-            if (f.value.id, f.attr) == ("np", "uint64") and len(args) == 1:
-                return f"(({U})({text[0]}))", U
-            self.fail(node, f"the call {ast.unparse(f)}")
-        if not isinstance(f, ast.Name):
-            self.fail(node, f"the call {ast.unparse(f)}")
-        name = f.id
-        if name == "select" and len(args) == 3:
-            types = {args[1][1], args[2][1]}
-            if args[0][1] != B or len(types) != 1:
-                self.fail(node, "a select of mixed types or on a non-comparison")
-            return f"({text[0]} ? {text[1]} : {text[2]})", args[1][1]
-        if name == "fdiv" and len(args) == 2:
-            return f"({text[0]} / {text[1]})", D
-        if name == "fma" and len(args) == 3:
-            return f"fma({text[0]}, {text[1]}, {text[2]})", D
-        if name == "float_bits" and len(args) == 1:
-            return f"fastrest_law__bits({text[0]})", I
-        if name in _C_NAME:
-            c_name, ret = _C_NAME[name]
-            return f"{c_name}({', '.join(text)})", ret
-        self.fail(node, f"the call {name}")
+        text, types = [a for a, _ in args], [t for _, t in args]
+        name, obj = ast.unparse(f), self.resolve(f)
+        if obj is interpolation.select and len(args) == 3:
+            if types[0] != B or types[1] != types[2] or types[1] not in (D, I):
+                self.fail(node, "a select of other than a comparison and two float64 or two int64")
+            return f"({text[0]} ? {text[1]} : {text[2]})", types[1]
+        # the callee (the object the name is bound to): argument types as Numba types them, C, result
+        known = [(math.sqrt, [D], "sqrt({})", D), (np.uint64, [I], "((" + U + ")({}))", U),
+                 (interpolation.fdiv, [D, D], "({} / {})", D), (interpolation.fma, [D, D, D], "fma({}, {}, {})", D),
+                 (interpolation.float_bits, [D], "fastrest_law__bits({})", I)]
+        known += [(fn, params, c_name + "(" + ", ".join(["{}"] * len(params)) + ")", ret)
+                  for fn, c_name, params, ret in _FUNCTIONS]
+        match = [k for k in known if k[0] is obj]
+        if not match:
+            self.fail(node, f"the call {name}")
+        _, want, template, ret = match[0]
+        types = [("const double *" if t == "double *" and w == "const double *" else t) for t, w in zip(types, want)]
+        if types != want:
+            self.fail(node, f"the call {name} with arguments of C types {types} (not {want})")
+        return template.format(*text), ret
 
     # --- statements ---
+    def scoped(self, body, indent):
+        """A block whose new locals end with it (C's scope): a later use fails here, not in C."""
+        outer = dict(self.types)
+        out = self.block(body, indent)
+        self.types = outer
+        return out
+
     def block(self, body, indent):
         out = []
         for st in body:
@@ -171,18 +202,20 @@ class _Function:
             return []  # a docstring
         if isinstance(st, ast.Return) and st.value is not None:
             if isinstance(st.value, ast.Tuple):
-                if len(st.value.elts) != 2:
-                    self.fail(st, "a tuple return of other than two values")
-                a, b = (self.expr(e)[0] for e in st.value.elts)
-                return [f"{pad}return fastrest_law_make_pair({a}, {b});"]
-            return [f"{pad}return {self.expr(st.value)[0]};"]
+                both = [self.expr(e) for e in st.value.elts]
+                if self.ret != P or [t for _, t in both] != [D, D]:
+                    self.fail(st, f"a tuple return other than two float64 as a {P}")
+                return [f"{pad}return fastrest_law_make_pair({both[0][0]}, {both[1][0]});"]
+            text, ty = self.expr(st.value)
+            self.need(st, ty, (self.ret,), f"a return as {self.ret}")
+            return [f"{pad}return {text};"]
         if isinstance(st, ast.If):
             test, ty = self.expr(st.test)
             if ty != B:
                 self.fail(st, "an if on a non-comparison")
-            out = [f"{pad}if {test} {{", *self.block(st.body, pad + "    ")]
+            out = [f"{pad}if {test} {{", *self.scoped(st.body, pad + "    ")]
             if st.orelse:
-                out += [f"{pad}}} else {{", *self.block(st.orelse, pad + "    ")]
+                out += [f"{pad}}} else {{", *self.scoped(st.orelse, pad + "    ")]
             return out + [f"{pad}}}"]
         if isinstance(st, ast.Assign):
             return self.assign(st, pad)
@@ -195,27 +228,31 @@ class _Function:
             if ty != P or len(names) != 2 or not all(isinstance(n, ast.Name) for n in names):
                 self.fail(st, "a tuple assignment other than two names from a pair")
             self.tmp += 1
-            out = [f"{pad}{P} pair_{self.tmp} = {text};"]
+            out = [f"{pad}{P} fastrest_tmp_{self.tmp} = {text};"]
             for n, field in zip(names, "ab"):
-                out += self.store(n, f"pair_{self.tmp}.{field}", D, pad)
+                out += self.store(n, f"fastrest_tmp_{self.tmp}.{field}", D, pad)
             return out
         text, ty = self.expr(st.value)
-        out = []
-        for target in reversed(st.targets):  # a = b = x: b = x, then a = b
-            out += self.store(target, text, ty, pad)
-            text = self.target_text(target)
+        if len(st.targets) == 1:
+            return self.store(st.targets[0], text, ty, pad)
+        self.need(st, ty, _NUM, "a chained assignment")
+        self.tmp += 1  # a = b = x: the value once, then the targets from left to right, as Python
+        out = [f"{pad}{ty} fastrest_tmp_{self.tmp} = {text};"]
+        for target in st.targets:
+            out += self.store(target, f"fastrest_tmp_{self.tmp}", ty, pad)
         return out
-
-    def target_text(self, target):
-        return target.id if isinstance(target, ast.Name) else self.subscript(target)
 
     def store(self, target, text, ty, pad):
         if isinstance(target, ast.Subscript):
-            if ty not in (D, I):
-                self.fail(target, "storing a non-number")
+            if not (isinstance(target.value, ast.Name) and self.types.get(target.value.id) == "double *"):
+                self.fail(target, f"storing into {ast.unparse(target.value)!r}")
+            self.need(target, ty, (D,), "storing a value")
             return [f"{pad}{self.subscript(target)} = {text};"]
-        if not isinstance(target, ast.Name) or ty == B:
+        if not isinstance(target, ast.Name):
             self.fail(target, "this assignment")
+        self.need(target, ty, _NUM, f"assigning {target.id!r}")
+        if target.id in _RESERVED or target.id.startswith("fastrest"):
+            self.fail(target, f"the local name {target.id!r} (a C/C++ word or the translator's)")
         if target.id in self.types:
             if self.types[target.id] != ty:
                 self.fail(target, f"{target.id!r} changing type")
@@ -267,7 +304,10 @@ def translate(fn: Any, c_name: str, param_types: Sequence[str], ret: str) -> str
         raise LawTranslationError(f"{py.__module__}.{py.__name__}: its parameters are not {len(param_types)} "
                                   "plain positional ones")
     names = [a.arg for a in args.args]
-    body = _Function(py, zip(names, param_types)).block(node.body, "    ")
+    if any(n in _RESERVED or n.startswith("fastrest") for n in names):
+        raise LawTranslationError(f"{py.__module__}.{py.__name__}: a parameter named as a C/C++ word or the "
+                                  "translator's temporaries")
+    body = _Function(py, zip(names, param_types), ret).block(node.body, "    ")
     params = ", ".join(f"{t}{'' if t.endswith('*') else ' '}{n}" for t, n in zip(param_types, names))
     return "\n".join([f"/* {py.__module__}.{py.__name__} */",
                       f"static inline FASTREST_LAW_FN {ret} {c_name}({params})", "{", *body, "}"])
