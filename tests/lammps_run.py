@@ -119,23 +119,26 @@ def read_dump(path):
     return np.array([[float(v) for v in t.split()] for t in text[start:] if t.strip()])
 
 
-def wall_script(materials, wall, drops, R, rho, dt, steps, *, unloading="jcg", approach_steps=20):
-    """Spheres dropped normally onto ``fix wall/jgm zplane 0 NULL`` (material ``wall`` =
-    (E, nu, Sy, Et)); drops: [(type, V)], each sphere alone; ends with ``final.dump``."""
+def wall_script(materials, wall, drops, R, rho, dt, steps, *, unloading="jcg", approach_steps=20, tangential=None):
+    """Spheres dropped onto ``fix wall/jgm zplane 0 NULL`` (material ``wall`` = (E, nu, Sy, Et));
+    drops: [(type, V)] or [(type, V, V_y)], each sphere alone (in a row of its own along y); ends with
+    ``final.dump`` (with spins)."""
     n = len(drops)
     E, nu, Sy, Et = wall
     lines = ["units si", "atom_style sphere", "atom_modify map array", "dimension 3", "boundary p p f",
              f"region box block 0 {4 * R * n} {-2 * R} {2 * R} {-R} {4 * R}", f"create_box {len(materials)} box"]
-    for k, (t, V) in enumerate(drops):
+    for k, (t, V, *_) in enumerate(drops):
         lines.append(f"create_atoms {t} single {4 * R * k + 2 * R:.17g} 0 {R + V * approach_steps * dt:.17g}")
     lines += [f"set atom * diameter {2 * R:.17g}", f"set atom * density {rho:.17g}", "velocity all set 0 0 0"]
-    for k, (t, V) in enumerate(drops):
-        lines.append(f"set atom {k + 1} vz {-V:.17g}")
+    for k, (t, V, *vx) in enumerate(drops):
+        lines.append(f"set atom {k + 1} vz {-V:.17g}" + (f" vy {vx[0]:.17g}" if vx else ""))
     lines += ["plugin load @PLUGIN@", f"pair_style jgm unloading {unloading}"]
     for t, (mE, mnu, mSy, mEt) in materials.items():
         lines.append(f"pair_coeff {t} {t} {mE!r} {mnu!r} {mSy!r}" + (f" Et {mEt!r}" if mEt else ""))
-    lines += [f"fix w all wall/jgm zplane 0.0 NULL {E!r} {nu!r} {Sy!r}" + (f" Et {Et!r}" if Et else ""),
+    lines += [f"fix w all wall/jgm zplane 0.0 NULL {E!r} {nu!r} {Sy!r}" + (f" Et {Et!r}" if Et else "")
+              + (f" tangential {tangential}" if tangential else ""),
               f"neighbor {R / 20:.17g} bin", "fix 1 all nve/sphere", f"timestep {dt:.17g}", "thermo 0",
               f"run {steps}",
-              "write_dump all custom final.dump id x y z vx vy vz modify sort id format float %.17g"]
+              "write_dump all custom final.dump id x y z vx vy vz omegax omegay omegaz modify sort id "
+              "format float %.17g"]
     return "\n".join(lines) + "\n"

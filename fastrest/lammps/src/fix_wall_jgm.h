@@ -33,11 +33,13 @@ class FixWallJGM : public Fix {
   double memory_usage() override;
 
  private:
-  static constexpr int NV = 2 * FastrestJGM::STATE;    // lo wall, hi wall
+  // per wall (lo, hi): the law's row and the tangential displacement
+  static constexpr int PER_WALL = FastrestJGM::STATE + 3, NV = 2 * PER_WALL;
   double zlo, zhi;
   int has_lo, has_hi;
   FastrestJGM::Body wall;
   std::string unloading;
+  double mu;    // tangential mindlin MU; < 0: tangential none
   FastrestJGM::Laws laws;
   std::vector<int> law_of;    // per atom type
   std::string laws_key;

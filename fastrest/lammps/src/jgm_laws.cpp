@@ -22,7 +22,7 @@ using namespace LAMMPS_NS;
 
 namespace FastrestJGM {
 
-static const char MAGIC[8] = {'F', 'R', 'J', 'G', 'M', 'L', 'W', '1'};
+static const char MAGIC[8] = {'F', 'R', 'J', 'G', 'M', 'L', 'W', '2'};
 static const int ROW = 16;
 
 static std::string shell_quote(const std::string &s)
@@ -47,6 +47,7 @@ static std::string read_file(const std::string &path, std::vector<char> *bytes)
 std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &out)
 {
   out.rows.clear();
+  out.area.clear();
   out.law.clear();
   if (bytes.size() < 16 || std::memcmp(bytes.data(), MAGIC, 8) != 0 || (bytes.size() - 8) % 8 != 0)
     return "not a fastrest law file";
@@ -57,17 +58,18 @@ std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &ou
   if (!(n == static_cast<double>(expected))) return "law file holds another number of laws";
   size_t at = 1;
   for (size_t k = 0; k < expected; ++k) {
-    if (at + 4 > nd) return "law file truncated";
+    if (at + 6 > nd) return "law file truncated";
     Law law;
     law.omega_c1 = d[at];
     law.p_c1 = d[at + 1];
     law.w_end = d[at + 2];
     double nrows = d[at + 3];
-    at += 4;
-    if (!(law.omega_c1 > 0.0) || !std::isfinite(law.omega_c1) || !(law.p_c1 > 0.0) ||
-        !std::isfinite(law.p_c1) || !(law.w_end > 0.0) || !std::isfinite(law.w_end))
-      return "law file holds a critical value that is not finite and > 0";
-    if (!(nrows >= 1.0) || nrows != std::floor(nrows) || nrows * ROW > static_cast<double>(nd - at))
+    law.a_c1 = d[at + 4];
+    law.g_eff = d[at + 5];
+    at += 6;
+    for (double v : {law.omega_c1, law.p_c1, law.w_end, law.a_c1, law.g_eff})
+      if (!(v > 0.0) || !std::isfinite(v)) return "law file holds a critical value that is not finite and > 0";
+    if (!(nrows >= 1.0) || nrows != std::floor(nrows) || nrows * (ROW + 8) > static_cast<double>(nd - at))
       return "law file holds a bad row count";
     size_t nr = static_cast<size_t>(nrows);
     law.first = static_cast<int64_t>(out.rows.size() / ROW);
@@ -77,6 +79,11 @@ std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &ou
       out.rows.push_back(d[at + m]);
     }
     at += nr * ROW;
+    for (size_t m = 0; m < nr * 8; ++m) {
+      if (!std::isfinite(d[at + m])) return "law file holds an area value that is not finite";
+      out.area.push_back(d[at + m]);
+    }
+    at += nr * 8;
     out.law.push_back(law);
   }
   if (at != nd) return "law file has trailing data";

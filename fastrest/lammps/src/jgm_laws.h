@@ -32,10 +32,13 @@ struct Law {
   double p_c1;         // critical force over the reduced radius squared (pressure units)
   double w_end;        // the law's end, w* = omega/omega_c (-)
   int64_t first, last; // this law's rows: first .. first + last
+  double a_c1;         // critical contact radius over the reduced radius (-)
+  double g_eff;        // Mindlin's combined shear modulus G* (pressure units)
 };
 
 struct Laws {
   std::vector<double> rows;   // all laws' rows, 16 doubles each
+  std::vector<double> area;   // A* on the same cells: [center, 1/half_width, c0..c5] each
   std::vector<Law> law;
 };
 

@@ -13,6 +13,7 @@
 #include "update.h"
 
 #include "fastrest_law.h"
+#include "jgm_tangential.h"
 
 #include <cmath>
 #include <cstring>
@@ -24,7 +25,8 @@ using FastrestJGM::Body;
 
 static const char *HISTORY_ID = "FASTREST_JGM_HISTORY";
 
-PairJGM::PairJGM(LAMMPS *lmp) : Pair(lmp), unloading_model("jcg"), maxrad(0.0), ended(0.0), history(nullptr)
+PairJGM::PairJGM(LAMMPS *lmp) :
+    Pair(lmp), unloading_model("jcg"), mu(-1.0), maxrad(0.0), ended(0.0), history(nullptr)
 {
   nextra = 2;    // compute pair jgm: [1] energy dissipated in contacts, [2] elastic energy they hold
   pvector = new double[2];
@@ -60,6 +62,7 @@ void PairJGM::allocate()
 void PairJGM::settings(int narg, char **arg)
 {
   unloading_model = "jcg";
+  mu = -1.0;
   int k = 0;
   while (k < narg) {
     std::string key = arg[k];
@@ -71,13 +74,20 @@ void PairJGM::settings(int narg, char **arg)
       unloading_model = m;
       k += 2;
     } else if (key == "tangential") {
-      if (k + 1 >= narg) error->all(FLERR, "pair_style jgm: 'tangential' needs a model: none");
+      if (k + 1 >= narg) error->all(FLERR, "pair_style jgm: 'tangential' needs a model: none or mindlin MU");
       std::string m = arg[k + 1];
-      if (m == "mindlin")
-        error->all(FLERR, "pair_style jgm: 'tangential mindlin' is not implemented yet (fastrest 0.3): "
-                          "use 'tangential none' (frictionless)");
-      if (m != "none") error->all(FLERR, "pair_style jgm: tangential model '{}' is not 'none'", m);
-      k += 2;
+      if (m == "none") {
+        mu = -1.0;
+        k += 2;
+      } else if (m == "mindlin") {
+        if (k + 2 >= narg) error->all(FLERR, "pair_style jgm: 'tangential mindlin' needs the friction coefficient MU");
+        mu = utils::numeric(FLERR, arg[k + 2], false, lmp);
+        if (!(mu >= 0.0) || !std::isfinite(mu))
+          error->all(FLERR, "pair_style jgm: friction coefficient MU = {} must be finite and >= 0", arg[k + 2]);
+        k += 3;
+      } else {
+        error->all(FLERR, "pair_style jgm: tangential model '{}' is not none or mindlin", m);
+      }
     } else {
       error->all(FLERR, "pair_style jgm: unknown keyword '{}' (expected unloading or tangential)", key);
     }
@@ -137,15 +147,15 @@ const Body *PairJGM::material(int t) const
 
 void PairJGM::init_style()
 {
-  if (!atom->radius_flag)
-    error->all(FLERR, "pair_style jgm needs per-atom radius (atom_style sphere)");
+  if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "pair_style jgm needs per-atom radius, omega and torque (atom_style sphere)");
   neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_NEWTON_OFF);
 
   Fix *f = modify->get_fix_by_id(HISTORY_ID);
   // ghost atoms carry velocities (comm_modify vel yes): a contact's first step of work needs them;
   // set before comm->init() sizes the messages
   comm->ghost_velocity = 1;
-  if (!f) f = modify->add_fix(fmt::format("{} all jgm/history {} {} {}", HISTORY_ID, NHIST, H_F, H_W));
+  if (!f) f = modify->add_fix(fmt::format("{} all jgm/history {} {} {}", HISTORY_ID, NHIST, H_F, NHIST));
   history = dynamic_cast<FixJGMHistory *>(f);
   if (!history) error->all(FLERR, "fix ID {} is reserved for pair_style jgm", HISTORY_ID);
 
@@ -199,25 +209,42 @@ void PairJGM::build_laws()
   laws_key = key.str();
 }
 
+// a x b
+static inline void cross(const double *a, const double *b, double *c)
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 void PairJGM::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  double **x = atom->x, **v = atom->v, **f = atom->f;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
   double *radius = atom->radius;
   int *type = atom->type;
   tagint *tag = atom->tag;
   int nlocal = atom->nlocal;
   int stride = atom->ntypes + 1;
-  const double *rows = laws.rows.data();
+  const double *rows = laws.rows.data(), *area = laws.area.data();
   const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
   double dissipated = 0.0, stored = 0.0;
+  // the forces of a run's set-up are those of the state as it is: histories advance only in steps
+  // (a restarted run then repeats the uninterrupted one)
+  const bool setup = update->setupflag != 0;
+  double scratch[NHIST];
 
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
     double xi = x[i][0], yi = x[i][1], zi = x[i][2], ri = radius[i];
     int *jlist = list->firstneigh[i];
-    double *h = history->values(i);
-    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += NHIST) {
+    double *row = history->values(i);
+    for (int jj = 0; jj < list->numneigh[i]; ++jj, row += NHIST) {
+      double *h = row;
+      if (setup) {
+        for (int k = 0; k < NHIST; ++k) scratch[k] = row[k];
+        h = scratch;
+      }
       int j = jlist[jj] & NEIGHMASK;
       double weight = j < nlocal ? 1.0 : 0.5;    // a pair with a ghost is also stepped on its rank
       double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
@@ -232,14 +259,9 @@ void PairJGM::compute(int eflag, int vflag)
       // (w_res* < 0 just above w* = 1.9 for nu < 0.32, where the unloading branch still pushes at
       // zero overlap); its energy is then dissipated, and a later touch is a new contact
       if (w <= 0.0 && w <= h[2]) {
-        if (h[H_W] != 0.0) ended += weight * h[H_W];
+        if (!setup) ended += weight * h[H_W];
         for (int k = 0; k < NHIST; ++k) h[k] = 0.0;
         continue;
-      }
-      if (h[0] == 0.0 && h[H_W] == 0.0) {    // first step in contact: where it was a step before
-        h[H_DX] = dx - dt * (v[i][0] - v[j][0]);
-        h[H_DX + 1] = dy - dt * (v[i][1] - v[j][1]);
-        h[H_DX + 2] = dz - dt * (v[i][2] - v[j][2]);
       }
       double p = fastrest_law_step(rows, law.first, law.last, law.w_end, h, w);
       if (!(p == p)) {
@@ -250,34 +272,66 @@ void PairJGM::compute(int eflag, int vflag)
         error->one(FLERR, "pair jgm: atoms {} and {} (types {} {}): no force at w* = {:.6g} (history lost)",
                    tag[i], tag[j], type[i], type[j], w);
       }
-      double fpair = p * law.p_c1 * reff * reff * from_pressure / r;
-      double fx = dx * fpair, fy = dy * fpair, fz = dz * fpair;
-      // energy the contact took from the atoms over the step (minus the trapezoid work of its
-      // force): summed over contacts, the kinetic energy velocity Verlet gives them between
-      // force-free states, to rounding (the O(dt^2) terms telescope)
-      h[H_W] += 0.5 * ((h[H_F] + fx) * (h[H_DX] - dx) + (h[H_F + 1] + fy) * (h[H_DX + 1] - dy) +
-                       (h[H_F + 2] + fz) * (h[H_DX + 2] - dz));
-      h[H_F] = fx;
-      h[H_F + 1] = fy;
-      h[H_F + 2] = fz;
-      h[H_DX] = dx;
-      h[H_DX + 1] = dy;
-      h[H_DX + 2] = dz;
-      // elastic energy the contact holds: the integral of the unloading branch, JGM eq (32)
+      double fn = p * law.p_c1 * reff * reff * from_pressure;
+      double n[3] = {dx / r, dy / r, dz / r};
+      // elastic energy of the normal law: the integral of its unloading branch, JGM eq (32)
       double s = h[3] > 0.0 ? (w - h[2]) / h[3] : 0.0;
       s = s > 1.0 ? 1.0 : (s > 0.0 ? s : 0.0);
-      double elastic = 0.4 * h[1] * h[3] * s * s * std::sqrt(s) * law.p_c1 * law.omega_c1 * reff * reff * reff * from_pressure;
+      double elastic = 0.4 * h[1] * h[3] * s * s * std::sqrt(s) * law.p_c1 * law.omega_c1 * reff * reff * reff *
+          from_pressure;
+      double ft[3] = {0.0, 0.0, 0.0};
+      // lever arms of the contact point, li + lj = r: torques then conserve angular momentum
+      double li = ri * (r / radsum), lj = radius[j] * (r / radsum);
+      if (mu >= 0.0) {
+        // contact radius: a^2 = a_c^2 A*(w_max) on loading, times s on the elastic branch (Hertz's
+        // a^2 proportional to the interference, from w_res*)
+        double wm = h[0];
+        const double *ar = area + 8 * fastrest_law_row(wm, law.first, law.last);
+        double a_star = fastrest_law_estrin5((wm - ar[0]) * ar[1], ar[2], ar[3], ar[4], ar[5], ar[6], ar[7]) * s;
+        double a = law.a_c1 * reff * std::sqrt(a_star > 0.0 ? a_star : 0.0);
+        double kt = 8.0 * law.g_eff * a * from_pressure;
+        double spin[3] = {li * omega[i][0] + lj * omega[j][0], li * omega[i][1] + lj * omega[j][1],
+                          li * omega[i][2] + lj * omega[j][2]};
+        double turn[3];
+        cross(spin, n, turn);
+        double vt[3] = {v[i][0] - v[j][0] - turn[0], v[i][1] - v[j][1] - turn[1], v[i][2] - v[j][2] - turn[2]};
+        // set-up: the force of the displacement as it is (dt 0), that of the step that left it
+        elastic += FastrestJGM::mindlin_step(h + H_XI, n, vt, kt, mu * fn, setup ? 0.0 : dt, ft);
+      }
+      double fv[3] = {fn * n[0] + ft[0], fn * n[1] + ft[1], fn * n[2] + ft[2]};
+      double ti[3], tj[3];
+      cross(n, ft, ti);
+      for (int k = 0; k < 3; ++k) {    // F_t at the contact point, -li n from i and +lj n from j
+        tj[k] = -lj * ti[k];
+        ti[k] *= -li;
+      }
+      // energy the contact takes from the atoms over the step: minus the trapezoid work of its
+      // force and torques with the half-step velocities velocity Verlet moves the atoms by; summed
+      // over contacts, the kinetic energy it gives them between force-free states, to rounding
+      double q = r / radsum, c[3];
+      cross(n, ft, c);
+      double work = 0.0;
+      for (int k = 0; k < 3; ++k)
+        work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) - (ri * h[H_Q] * h[H_C + k] - ti[k]) * omega[i][k] -
+            (radius[j] * h[H_Q] * h[H_C + k] - tj[k]) * omega[j][k];
+      h[H_W] -= 0.5 * dt * work;
+      h[H_Q] = q;
+      for (int k = 0; k < 3; ++k) {
+        h[H_F + k] = fv[k];
+        h[H_C + k] = c[k];
+      }
       dissipated += weight * (h[H_W] - elastic);
       stored += weight * elastic;
-      f[i][0] += fx;
-      f[i][1] += fy;
-      f[i][2] += fz;
-      if (j < nlocal) {
-        f[j][0] -= fx;
-        f[j][1] -= fy;
-        f[j][2] -= fz;
+      for (int k = 0; k < 3; ++k) {
+        f[i][k] += fv[k];
+        torque[i][k] += ti[k];
       }
-      if (evflag) ev_tally(i, j, nlocal, 0, elastic, 0.0, fpair, dx, dy, dz);
+      if (j < nlocal)
+        for (int k = 0; k < 3; ++k) {
+          f[j][k] -= fv[k];
+          torque[j][k] += tj[k];
+        }
+      if (evflag) ev_tally_xyz(i, j, nlocal, 0, elastic, 0.0, fv[0], fv[1], fv[2], dx, dy, dz);
     }
   }
   pvector[0] = ended + dissipated;

@@ -14,9 +14,11 @@ namespace LAMMPS_NS {
 
 class PairJGM : public Pair {
  public:
-  // One contact's history: the law's row (fastrest.jit.STATE_SIZE values), the force on atom i and
-  // the vector from j to i at the last step, the energy the contact has taken from the atoms.
-  static constexpr int H_F = FastrestJGM::STATE, H_DX = H_F + 3, H_W = H_DX + 3, NHIST = H_W + 1;
+  // [0, STATE): the law's row; H_W: energy taken; H_Q: r/(R_i + R_j) and H_C: n x F_t at the last
+  // step (the torques' lever and direction, alike seen from i or j); then vectors from j to i
+  // (negated for j): H_F the force on i at the last step, H_XI the tangential displacement
+  static constexpr int H_W = FastrestJGM::STATE, H_Q = H_W + 1, H_C = H_Q + 1, H_F = H_C + 3, H_XI = H_F + 3,
+                       NHIST = H_XI + 3;
 
   PairJGM(class LAMMPS *);
   ~PairJGM() override;
@@ -30,9 +32,11 @@ class PairJGM : public Pair {
   //! The material of atom type t (set by pair_coeff t t), or nullptr.
   const FastrestJGM::Body *material(int t) const;
   const std::string &unloading() const { return unloading_model; }
+  double friction() const { return mu; }
 
  private:
   std::string unloading_model;
+  double mu;    // Coulomb friction coefficient of tangential mindlin; < 0: tangential none
   std::vector<FastrestJGM::Body> mat;    // per type
   std::vector<int> mat_set;
   FastrestJGM::Laws laws;
