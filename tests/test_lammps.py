@@ -327,3 +327,36 @@ def test_frictional_pairs_conserve_momentum_and_spin_alike(tmp_path):
     assert np.allclose(after[:, 2], before, rtol=1e-9, atol=0), (after[:, 2], before)
     assert np.allclose(a[:, 9], b[:, 9], rtol=1e-9) and np.all(np.abs(a[:, 9]) > 0)
     assert np.all(np.abs(a[:, 5] - b[:, 5]) < vt)
+
+
+@pytest.mark.parametrize("case", ["two spheres", "sphere on wall"])
+def test_elastic_impacts_are_hertz(tmp_path, case):
+    """Below V_c the law is Hertz's (JGM eq 14): Chung & Ooi's (2011) normal elastic impact tests
+    (their tests 1 and 2) reduce to Hertz's contact time 2.868 (m'^2/(R' E'^2 V))^(1/5) and peak
+    force (4/3) E' R'^(1/2) d^(3/2), d = (15 m' V^2/(16 E' R'^(1/2)))^(2/5), and e = 1."""
+    from lammps_run import wall_script
+
+    steel = _material(STEEL)
+    imp = fastrest.Impact.two_spheres(steel, R, steel, R) if case == "two spheres" else \
+        fastrest.Impact(steel, R, flat=steel)
+    c = imp.critical_values()
+    V = 0.5 * imp.V_c
+    t_c = hertz_time(c["mass"], c["R_eff"], c["E_eff"], V)
+    dt = t_c / 2000
+    steps = int(1.2 * t_c / dt) + 40
+    if case == "two spheres":
+        script = pairs_script({1: STEEL}, [(1, 1, V)], R, RHO, dt, steps)
+    else:
+        script = wall_script({1: STEEL}, STEEL, [(1, V)], R, RHO, dt, steps)
+    script = script.replace("thermo 0", "variable f equal abs(fx[1])+abs(fz[1])\nthermo_style custom step v_f\n"
+                            "thermo_modify format float %.17g\nthermo 1")
+    _, out = lmp(script, tmp_path)
+    f = np.array([float(line.split()[1]) for line in out.splitlines()
+                  if len(line.split()) == 2 and line.split()[0].isdigit()])
+    d = (15 * c["mass"] * V ** 2 / (16 * c["E_eff"] * c["R_eff"] ** 0.5)) ** 0.4
+    f_max = 4 / 3 * c["E_eff"] * c["R_eff"] ** 0.5 * d ** 1.5
+    assert abs(f.max() - f_max) <= 1e-5 * f_max
+    assert abs((f > 0).sum() * dt - t_c) <= 2 * dt
+    vel = read_dump(tmp_path / "final.dump")
+    e = (vel[1, 4] - vel[0, 4]) / V if case == "two spheres" else vel[0, 6] / V
+    assert abs(e - 1.0) <= 1e-6
