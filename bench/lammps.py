@@ -28,9 +28,7 @@ import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests"))
-
-from bench import report  # noqa: E402
+from bench import report
 
 STYLES = {
     "jgm+mindlin": ["plugin load {plugin}", "pair_style jgm unloading jcg tangential mindlin 0.5",

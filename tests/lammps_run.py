@@ -80,6 +80,12 @@ def hertz_time(m_eff, R_eff, E_eff, V):
     return 2.868 * (m_eff ** 2 / (R_eff * E_eff ** 2 * V)) ** 0.2
 
 
+def _coeffs(materials):
+    """``pair_coeff t t E nu Sy [Et value]`` of each type of {type: (E, nu, Sy, Et)}."""
+    return [f"pair_coeff {t} {t} {E!r} {nu!r} {Sy!r}" + (f" Et {Et!r}" if Et else "")
+            for t, (E, nu, Sy, Et) in materials.items()]
+
+
 def pairs_script(materials, pairs, R, rho, dt, steps, *, unloading="jcg", drift=(0.0, 0.0, 0.0),
                  processors="* * *", approach_steps=20, newton="on", extra="", run_lines=None):
     """Head-on collisions of sphere pairs, each pair alone; ends with a sorted dump ``final.dump``.
@@ -102,9 +108,7 @@ def pairs_script(materials, pairs, R, rho, dt, steps, *, unloading="jcg", drift=
     for k, (ta, tb, V) in enumerate(pairs):
         lines += [f"set atom {2 * k + 1} vx {V / 2 + drift[0]:.17g} vy {drift[1]:.17g} vz {drift[2]:.17g}",
                   f"set atom {2 * k + 2} vx {-V / 2 + drift[0]:.17g} vy {drift[1]:.17g} vz {drift[2]:.17g}"]
-    lines += ["plugin load @PLUGIN@", f"pair_style jgm unloading {unloading}"]
-    for t, (E, nu, Sy, Et) in materials.items():
-        lines.append(f"pair_coeff {t} {t} {E!r} {nu!r} {Sy!r}" + (f" Et {Et!r}" if Et else ""))
+    lines += ["plugin load @PLUGIN@", f"pair_style jgm unloading {unloading}", *_coeffs(materials)]
     lines += [f"neighbor {R / 20:.17g} bin", "neigh_modify every 1 delay 0 check yes", "comm_modify vel yes",
               "fix 1 all nve/sphere", f"timestep {dt:.17g}", "thermo 0", extra]
     lines += run_lines if run_lines is not None else [f"run {steps}"]
@@ -132,9 +136,7 @@ def wall_script(materials, wall, drops, R, rho, dt, steps, *, unloading="jcg", a
     lines += [f"set atom * diameter {2 * R:.17g}", f"set atom * density {rho:.17g}", "velocity all set 0 0 0"]
     for k, (t, V, *vx) in enumerate(drops):
         lines.append(f"set atom {k + 1} vz {-V:.17g}" + (f" vy {vx[0]:.17g}" if vx else ""))
-    lines += ["plugin load @PLUGIN@", f"pair_style jgm unloading {unloading}"]
-    for t, (mE, mnu, mSy, mEt) in materials.items():
-        lines.append(f"pair_coeff {t} {t} {mE!r} {mnu!r} {mSy!r}" + (f" Et {mEt!r}" if mEt else ""))
+    lines += ["plugin load @PLUGIN@", f"pair_style jgm unloading {unloading}", *_coeffs(materials)]
     lines += [f"fix w all wall/jgm zplane 0.0 NULL {E!r} {nu!r} {Sy!r}" + (f" Et {Et!r}" if Et else "")
               + (f" tangential {tangential}" if tangential else ""),
               f"neighbor {R / 20:.17g} bin", "fix 1 all nve/sphere", f"timestep {dt:.17g}", "thermo 0",

@@ -22,7 +22,7 @@ from importlib import metadata, util
 
 from .._version import __version__
 from ..export._io import check_target
-from ..tables.file import check_target_dir
+from ..tables.file import check_target_dir, replace_files
 
 __all__ = ["SUPPORTED_LAMMPS", "PLUGIN_NAME", "LammpsInstall", "find_lammps", "build_plugin"]
 
@@ -182,8 +182,5 @@ def build_plugin(out: str | os.PathLike[str] = ".", *, compiler: str | None = No
         if run.returncode != 0:
             tail = "\n".join((run.stderr or run.stdout).strip().splitlines()[-20:])
             raise RuntimeError(f"compiling the plugin failed ({cxx}, exit {run.returncode}):\n{tail}")
-        tmp_target = target.with_name(f".{PLUGIN_NAME}.{os.getpid()}.tmp")
-        shutil.copyfile(so, tmp_target)
-        os.chmod(tmp_target, 0o755)
-        os.replace(tmp_target, target)
+        replace_files({target: so.read_bytes()}, "--out", "the plugin", mode=0o755)
     return target.resolve()

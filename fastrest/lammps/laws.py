@@ -110,11 +110,8 @@ def area_rows(law: Any) -> NDArray[np.float64]:
 
 
 def _g_eff(a, b):
-    def shear(body):
-        return body[0] / (2.0 * (1.0 + body[1]))
-
-    g_b = (2.0 - b[1]) / shear(b) if math.isfinite(b[0]) else 0.0
-    return 1.0 / ((2.0 - a[1]) / shear(a) + g_b)
+    """Mindlin's G* = 1/((2 - nu1)/G1 + (2 - nu2)/G2) of bodies (E, nu, ...), G = E/(2 (1 + nu))."""
+    return 1.0 / sum((2.0 - body[1]) * 2.0 * (1.0 + body[1]) / body[0] for body in (a, b))
 
 
 def law_bytes(requests: list[Request], unloading: str) -> bytes:

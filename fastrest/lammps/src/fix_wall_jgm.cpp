@@ -19,12 +19,7 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-static double wall_number(LAMMPS *lmp, const char *what, const char *text)
-{
-  double v = utils::numeric(FLERR, text, false, lmp);
-  if (!std::isfinite(v)) lmp->error->all(FLERR, "fix wall/jgm: {} = {} is not finite", what, text);
-  return v;
-}
+static const char *WHERE = "fix wall/jgm";
 
 // fix ID group wall/jgm zplane ZLO ZHI E nu Sy [Et value] [unloading jcg|etsion|brake]
 //     [tangential none|mindlin MU]
@@ -36,14 +31,11 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
                narg - 3);
   if (std::strcmp(arg[3], "zplane") != 0)
     error->all(FLERR, "fix wall/jgm: wall '{}' is not supported (only zplane)", arg[3]);
-  if (std::strcmp(arg[4], "NULL") != 0) { zlo = wall_number(lmp, "ZLO", arg[4]); has_lo = 1; }
-  if (std::strcmp(arg[5], "NULL") != 0) { zhi = wall_number(lmp, "ZHI", arg[5]); has_hi = 1; }
+  if (std::strcmp(arg[4], "NULL") != 0) { zlo = FastrestJGM::finite_number(lmp, WHERE, "ZLO", arg[4]); has_lo = 1; }
+  if (std::strcmp(arg[5], "NULL") != 0) { zhi = FastrestJGM::finite_number(lmp, WHERE, "ZHI", arg[5]); has_hi = 1; }
   if (!has_lo && !has_hi) error->all(FLERR, "fix wall/jgm: ZLO and ZHI are both NULL");
   if (has_lo && has_hi && !(zlo < zhi)) error->all(FLERR, "fix wall/jgm: ZLO = {} must be < ZHI = {}", zlo, zhi);
-  wall.E = wall_number(lmp, "E", arg[6]);
-  wall.nu = wall_number(lmp, "nu", arg[7]);
-  wall.Sy = wall_number(lmp, "Sy", arg[8]);
-  wall.Et = 0.0;
+  const char *et = nullptr;
   unloading = "";
   int k = 9;
   while (k < narg) {
@@ -53,13 +45,13 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
         mu = -1.0;
       } else if (std::strcmp(arg[k + 1], "mindlin") == 0) {
         if (k + 2 >= narg) error->all(FLERR, "fix wall/jgm: 'tangential mindlin' needs the friction coefficient MU");
-        mu = wall_number(lmp, "MU", arg[k + 2]);
+        mu = FastrestJGM::finite_number(lmp, WHERE, "MU", arg[k + 2]);
         if (!(mu >= 0.0)) error->all(FLERR, "fix wall/jgm: friction coefficient MU = {} must be >= 0", arg[k + 2]);
         ++k;
       } else {
         error->all(FLERR, "fix wall/jgm: tangential model '{}' is not none or mindlin", arg[k + 1]);
       }
-    } else if (std::strcmp(arg[k], "Et") == 0) wall.Et = wall_number(lmp, "Et", arg[k + 1]);
+    } else if (std::strcmp(arg[k], "Et") == 0) et = arg[k + 1];
     else if (std::strcmp(arg[k], "unloading") == 0) {
       unloading = arg[k + 1];
       if (unloading != "jcg" && unloading != "etsion" && unloading != "brake")
@@ -67,11 +59,7 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
     } else error->all(FLERR, "fix wall/jgm: unknown keyword '{}' (expected Et, unloading or tangential)", arg[k]);
     k += 2;
   }
-  if (!(wall.E > 0.0)) error->all(FLERR, "fix wall/jgm: E = {} must be > 0", wall.E);
-  if (!(wall.nu >= 0.0 && wall.nu < 0.5)) error->all(FLERR, "fix wall/jgm: nu = {} must be in [0, 0.5)", wall.nu);
-  if (!(wall.Sy > 0.0)) error->all(FLERR, "fix wall/jgm: Sy = {} must be > 0", wall.Sy);
-  if (!(wall.Et >= 0.0 && wall.Et < wall.E))
-    error->all(FLERR, "fix wall/jgm: Et = {} must be in [0, E = {})", wall.Et, wall.E);
+  wall = FastrestJGM::read_body(lmp, WHERE, arg[6], arg[7], arg[8], et);
   if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "fix wall/jgm needs per-atom radius, omega and torque (atom_style sphere)");
 
@@ -129,7 +117,7 @@ void FixWallJGM::post_force(int)
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
   double *radius = atom->radius;
   int *mask = atom->mask, *type = atom->type;
-  const double *rows = laws.rows.data(), *area = laws.area.data();
+  const double *rows = laws.rows.data();
   const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
   force_flag = 0;
   wall_force[0] = wall_force[1] = 0.0;
@@ -147,7 +135,7 @@ void FixWallJGM::post_force(int)
       }
       if (gap >= r && !(h[0] > 0.0)) continue;
       double w = (r - gap) / (law.omega_c1 * r);
-      if (w <= 0.0 && w <= h[2]) {    // ended: overlap and force gone (see pair_jgm.cpp)
+      if (FastrestJGM::contact_over(w, h)) {
         for (int k = 0; k < PER_WALL; ++k) h[k] = 0.0;
         continue;
       }
@@ -159,12 +147,7 @@ void FixWallJGM::post_force(int)
       double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
       double ft[3] = {0.0, 0.0, 0.0};
       if (mu >= 0.0) {    // as pair_style jgm, with the wall at rest
-        double s = h[3] > 0.0 ? (w - h[2]) / h[3] : 0.0;
-        s = s > 1.0 ? 1.0 : (s > 0.0 ? s : 0.0);
-        double wm = h[0];
-        const double *ar = area + 8 * fastrest_law_row(wm, law.first, law.last);
-        double a_star = fastrest_law_estrin5((wm - ar[0]) * ar[1], ar[2], ar[3], ar[4], ar[5], ar[6], ar[7]) * s;
-        double kt = 8.0 * law.g_eff * law.a_c1 * r * std::sqrt(a_star > 0.0 ? a_star : 0.0) * from_pressure;
+        double kt = FastrestJGM::mindlin_stiffness(laws, law, h, FastrestJGM::elastic_fraction(h, w), r) * from_pressure;
         // contact point: v + omega x (-r n)
         double vt[3] = {v[i][0] - r * (omega[i][1] * n[2] - omega[i][2] * n[1]),
                         v[i][1] - r * (omega[i][2] * n[0] - omega[i][0] * n[2]),

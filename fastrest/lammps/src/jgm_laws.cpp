@@ -3,6 +3,7 @@
 #include "comm.h"
 #include "error.h"
 #include "pointers.h"
+#include "utils.h"
 
 #include <cmath>
 #include <cstdio>
@@ -88,6 +89,29 @@ std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &ou
   }
   if (at != nd) return "law file has trailing data";
   return "";
+}
+
+double finite_number(LAMMPS *lmp, const std::string &where, const char *what, const char *text)
+{
+  double v = utils::numeric(FLERR, text, false, lmp);
+  if (!std::isfinite(v)) lmp->error->all(FLERR, "{}: {} = {} is not finite", where, what, text);
+  return v;
+}
+
+Body read_body(LAMMPS *lmp, const std::string &where, const char *E, const char *nu, const char *Sy, const char *Et)
+{
+  Body b;
+  b.E = finite_number(lmp, where, "E", E);
+  b.nu = finite_number(lmp, where, "nu", nu);
+  b.Sy = finite_number(lmp, where, "Sy", Sy);
+  b.Et = Et ? finite_number(lmp, where, "Et", Et) : 0.0;
+  Error *error = lmp->error;
+  if (!(b.E > 0.0)) error->all(FLERR, "{}: E = {} must be > 0", where, E);
+  if (!(b.nu >= 0.0 && b.nu < 0.5)) error->all(FLERR, "{}: nu = {} must be in [0, 0.5)", where, nu);
+  if (!(b.Sy > 0.0)) error->all(FLERR, "{}: Sy = {} must be > 0", where, Sy);
+  if (!(b.Sy < b.E)) error->all(FLERR, "{}: Sy = {} must be < E = {}", where, Sy, E);
+  if (!(b.Et >= 0.0 && b.Et < b.E)) error->all(FLERR, "{}: Et = {} must be in [0, E = {})", where, Et, E);
+  return b;
 }
 
 void request_laws(LAMMPS *lmp, const std::vector<LawRequest> &requests, const std::string &unloading,

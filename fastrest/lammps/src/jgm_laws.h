@@ -42,6 +42,27 @@ struct Laws {
   std::vector<Law> law;
 };
 
+//! A number of the input script, finite; else a LAMMPS error "WHERE: WHAT = TEXT is not finite".
+double finite_number(LAMMPS_NS::LAMMPS *lmp, const std::string &where, const char *what, const char *text);
+
+//! A body's material from the script's texts of E, nu, Sy and Et (nullptr: Et = 0), checked:
+//! E > 0, 0 <= nu < 0.5, 0 < Sy < E, 0 <= Et < E, else a LAMMPS error naming the value.
+Body read_body(LAMMPS_NS::LAMMPS *lmp, const std::string &where, const char *E, const char *nu, const char *Sy,
+               const char *Et);
+
+//! Whether a contact at w* with history row `state` has ended: the overlap and the force both gone
+//! (w* <= 0 and w* <= w_res*; w_res* < 0 just above w* = 1.9 for nu < 0.32, where the unloading
+//! branch still pushes at zero overlap).
+inline bool contact_over(double w, const double *state) { return w <= 0.0 && w <= state[2]; }
+
+//! Where w* lies on the elastic branch through the maximum: s = (w* - w_res*)/delta in [0, 1]
+//! (1 while loading, 0 at or below w_res* and for a virgin row).
+inline double elastic_fraction(const double *state, double w)
+{
+  double s = state[3] > 0.0 ? (w - state[2]) / state[3] : 0.0;
+  return s > 1.0 ? 1.0 : (s > 0.0 ? s : 0.0);
+}
+
 //! Build the laws of `requests` (collective: every rank calls it); a LAMMPS error on failure.
 void request_laws(LAMMPS_NS::LAMMPS *lmp, const std::vector<LawRequest> &requests,
                   const std::string &unloading, Laws &out);

@@ -81,8 +81,8 @@ void PairJGM::settings(int narg, char **arg)
         k += 2;
       } else if (m == "mindlin") {
         if (k + 2 >= narg) error->all(FLERR, "pair_style jgm: 'tangential mindlin' needs the friction coefficient MU");
-        mu = utils::numeric(FLERR, arg[k + 2], false, lmp);
-        if (!(mu >= 0.0) || !std::isfinite(mu))
+        mu = FastrestJGM::finite_number(lmp, "pair_style jgm", "MU", arg[k + 2]);
+        if (!(mu >= 0.0))
           error->all(FLERR, "pair_style jgm: friction coefficient MU = {} must be finite and >= 0", arg[k + 2]);
         k += 3;
       } else {
@@ -94,13 +94,6 @@ void PairJGM::settings(int narg, char **arg)
   }
 }
 
-static double positive_number(LAMMPS *lmp, const char *what, const char *text)
-{
-  double v = utils::numeric(FLERR, text, false, lmp);
-  if (!std::isfinite(v)) lmp->error->all(FLERR, "pair_coeff jgm: {} = {} is not finite", what, text);
-  return v;
-}
-
 void PairJGM::coeff(int narg, char **arg)
 {
   if (narg != 5 && narg != 7)
@@ -109,22 +102,9 @@ void PairJGM::coeff(int narg, char **arg)
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-  Body b;
-  b.E = positive_number(lmp, "E", arg[2]);
-  b.nu = positive_number(lmp, "nu", arg[3]);
-  b.Sy = positive_number(lmp, "Sy", arg[4]);
-  b.Et = 0.0;
-  if (narg == 7) {
-    if (std::strcmp(arg[5], "Et") != 0)
-      error->all(FLERR, "pair_coeff jgm: expected keyword 'Et' after Sy, got '{}'", arg[5]);
-    b.Et = positive_number(lmp, "Et", arg[6]);
-  }
-  if (!(b.E > 0.0)) error->all(FLERR, "pair_coeff jgm: E = {} must be > 0", arg[2]);
-  if (!(b.nu >= 0.0 && b.nu < 0.5)) error->all(FLERR, "pair_coeff jgm: nu = {} must be in [0, 0.5)", arg[3]);
-  if (!(b.Sy > 0.0)) error->all(FLERR, "pair_coeff jgm: Sy = {} must be > 0", arg[4]);
-  if (!(b.Sy < b.E)) error->all(FLERR, "pair_coeff jgm: Sy = {} must be < E = {}", arg[4], arg[2]);
-  if (!(b.Et >= 0.0 && b.Et < b.E))
-    error->all(FLERR, "pair_coeff jgm: Et = {} must be in [0, E = {})", arg[6], arg[2]);
+  if (narg == 7 && std::strcmp(arg[5], "Et") != 0)
+    error->all(FLERR, "pair_coeff jgm: expected keyword 'Et' after Sy, got '{}'", arg[5]);
+  Body b = FastrestJGM::read_body(lmp, "pair_coeff jgm", arg[2], arg[3], arg[4], narg == 7 ? arg[6] : nullptr);
   int count = 0;
   for (int i = ilo; i <= ihi; ++i)
     for (int j = std::max(jlo, i); j <= jhi; ++j) {
@@ -226,7 +206,7 @@ void PairJGM::compute(int eflag, int vflag)
   tagint *tag = atom->tag;
   int nlocal = atom->nlocal;
   int stride = atom->ntypes + 1;
-  const double *rows = laws.rows.data(), *area = laws.area.data();
+  const double *rows = laws.rows.data();
   const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
   double dissipated = 0.0, stored = 0.0;
   // the forces of a run's set-up are those of the state as it is: histories advance only in steps
@@ -255,10 +235,8 @@ void PairJGM::compute(int eflag, int vflag)
       double r = std::sqrt(rsq);
       double reff = ri * radius[j] / radsum;
       double w = (radsum - r) / (law.omega_c1 * reff);
-      // a contact ends where the overlap and the force are both gone: w <= 0 and w <= w_res*
-      // (w_res* < 0 just above w* = 1.9 for nu < 0.32, where the unloading branch still pushes at
-      // zero overlap); its energy is then dissipated, and a later touch is a new contact
-      if (w <= 0.0 && w <= h[2]) {
+      // an ended contact's energy is dissipated, and a later touch is a new contact
+      if (FastrestJGM::contact_over(w, h)) {
         if (!setup) ended += weight * h[H_W];
         for (int k = 0; k < NHIST; ++k) h[k] = 0.0;
         continue;
@@ -275,21 +253,14 @@ void PairJGM::compute(int eflag, int vflag)
       double fn = p * law.p_c1 * reff * reff * from_pressure;
       double n[3] = {dx / r, dy / r, dz / r};
       // elastic energy of the normal law: the integral of its unloading branch, JGM eq (32)
-      double s = h[3] > 0.0 ? (w - h[2]) / h[3] : 0.0;
-      s = s > 1.0 ? 1.0 : (s > 0.0 ? s : 0.0);
+      double s = FastrestJGM::elastic_fraction(h, w);
       double elastic = 0.4 * h[1] * h[3] * s * s * std::sqrt(s) * law.p_c1 * law.omega_c1 * reff * reff * reff *
           from_pressure;
       double ft[3] = {0.0, 0.0, 0.0};
       // lever arms of the contact point, li + lj = r: torques then conserve angular momentum
-      double li = ri * (r / radsum), lj = radius[j] * (r / radsum);
+      double q = r / radsum, li = ri * q, lj = radius[j] * q;
       if (mu >= 0.0) {
-        // contact radius: a^2 = a_c^2 A*(w_max) on loading, times s on the elastic branch (Hertz's
-        // a^2 proportional to the interference, from w_res*)
-        double wm = h[0];
-        const double *ar = area + 8 * fastrest_law_row(wm, law.first, law.last);
-        double a_star = fastrest_law_estrin5((wm - ar[0]) * ar[1], ar[2], ar[3], ar[4], ar[5], ar[6], ar[7]) * s;
-        double a = law.a_c1 * reff * std::sqrt(a_star > 0.0 ? a_star : 0.0);
-        double kt = 8.0 * law.g_eff * a * from_pressure;
+        double kt = FastrestJGM::mindlin_stiffness(laws, law, h, s, reff) * from_pressure;
         double spin[3] = {li * omega[i][0] + lj * omega[j][0], li * omega[i][1] + lj * omega[j][1],
                           li * omega[i][2] + lj * omega[j][2]};
         double turn[3];
@@ -299,17 +270,15 @@ void PairJGM::compute(int eflag, int vflag)
         elastic += FastrestJGM::mindlin_step(h + H_XI, n, vt, kt, mu * fn, setup ? 0.0 : dt, ft);
       }
       double fv[3] = {fn * n[0] + ft[0], fn * n[1] + ft[1], fn * n[2] + ft[2]};
-      double ti[3], tj[3];
-      cross(n, ft, ti);
+      double c[3], ti[3], tj[3];
+      cross(n, ft, c);
       for (int k = 0; k < 3; ++k) {    // F_t at the contact point, -li n from i and +lj n from j
-        tj[k] = -lj * ti[k];
-        ti[k] *= -li;
+        ti[k] = -li * c[k];
+        tj[k] = -lj * c[k];
       }
       // energy the contact takes from the atoms over the step: minus the trapezoid work of its
       // force and torques with the half-step velocities velocity Verlet moves the atoms by; summed
       // over contacts, the kinetic energy it gives them between force-free states, to rounding
-      double q = r / radsum, c[3];
-      cross(n, ft, c);
       double work = 0.0;
       for (int k = 0; k < 3; ++k)
         work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) - (ri * h[H_Q] * h[H_C + k] - ti[k]) * omega[i][k] -
