@@ -360,3 +360,47 @@ def test_elastic_impacts_are_hertz(tmp_path, case):
     vel = read_dump(tmp_path / "final.dump")
     e = (vel[1, 4] - vel[0, 4]) / V if case == "two spheres" else vel[0, 6] / V
     assert abs(e - 1.0) <= 1e-6
+
+
+@pytest.mark.parametrize("damage,message", [
+    ("magic", "not a fastrest law file"),
+    ("truncated", "law file truncated"),
+    ("rows", "law file holds a bad row count"),
+    ("nan", "law file holds a critical value that is not finite and > 0"),
+    ("trailing", "law file has trailing data"),
+    ("fails", "fastrest (FAKE -m fastrest lammps law) failed: RuntimeError: broken"),
+])
+def test_damaged_law_files_are_refused(tmp_path, damage, message):
+    """The plugin reads the laws fastrest writes as hostile bytes: each damage is a LAMMPS error
+    naming it, in a subprocess with a time limit (never a crash or a hang)."""
+    import os
+    import subprocess
+    import sys
+
+    from fastrest.lammps.laws import law_bytes, read_requests
+    from lammps_run import BIN
+
+    good = tmp_path / "req.txt"
+    good.write_text("spheres 200e9 0.3 1e9 0 200e9 0.3 1e9 0 types_1_1\n")
+    data = bytearray(law_bytes(read_requests(good), "jcg"))
+    if damage == "magic":
+        data[:8] = b"NOTALAW!"
+    elif damage == "truncated":
+        data = data[:8 + 8 * 3]
+    elif damage == "rows":
+        data[8 + 8 * 4:8 + 8 * 5] = np.array([1e12]).tobytes()
+    elif damage == "nan":
+        data[8 + 8:8 + 16] = np.array([np.nan]).tobytes()
+    elif damage == "trailing":
+        data += np.array([1.0]).tobytes()
+    (tmp_path / "laws.bin").write_bytes(bytes(data))
+    fake = tmp_path / "FAKE"  # stands in for the Python the plugin calls: copies laws.bin to --out
+    fake.write_text(f"#!{sys.executable}\nimport shutil, sys\n"
+                    + ("raise RuntimeError('broken')\n" if damage == "fails" else
+                       f"shutil.copyfile({str(tmp_path / 'laws.bin')!r}, sys.argv[sys.argv.index('--out') + 1])\n"))
+    fake.chmod(0o755)
+    (tmp_path / "in.lmp").write_text(_one_pair().replace("@PLUGIN@", plugin()))
+    run = subprocess.run([str(BIN / "lmp"), "-in", "in.lmp", "-log", "none", "-nocite"], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=120, env=dict(os.environ, FASTREST_PYTHON=str(fake)))
+    out = (run.stdout + run.stderr).replace(str(fake), "FAKE")
+    assert run.returncode != 0 and "ERROR" in out and message in out, out[-1500:]
