@@ -294,9 +294,12 @@ def main(argv: list[str] | None = None) -> int:
     from .lammps.cli import add_parser as add_lammps_parser
 
     add_lammps_parser(sub)
+    from .rough.cli import add_parser as add_rough_parser
+
+    pr = add_rough_parser(sub)
 
     p.add_argument("--version", action="version", version=f"fastrest {__version__}")
-    for parser in (p, pe, pb, pi, pw, pf):
+    for parser in (p, pe, pb, pi, pw, pf, pr):
         # argparse takes "-2e11" (exponent) or "-inf" for an option: read them as numbers, so a
         # negative value gets the model's own message ("E must be finite and > 0")
         parser._negative_number_matcher = _NEGATIVE_NUMBER

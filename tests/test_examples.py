@@ -30,3 +30,15 @@ def test_contact_law_loop_writes_to_the_current_directory_or_out(tmp_path):
     mod = runpy.run_path(script)
     assert mod["out_path"](["x", "--out", str(tmp_path / "b.png")]) == tmp_path / "b.png"
     assert mod["out_path"](["x", str(tmp_path / "c.png")]) == tmp_path / "c.png"  # the old positional form
+
+
+def test_topography_summits_writes_its_figure(tmp_path):
+    """docs/examples/topography_summits.py (the docs' figure of a map's summits and e(V)) runs from
+    another directory and writes its PNG there; its printed counts name every summit kept."""
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("SurfaceTopography")
+    script = str(EXAMPLES / "topography_summits.py")
+    r = subprocess.run([sys.executable, script], cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "topography_summits.png").stat().st_size > 10_000
+    assert "'n_summits'" in r.stdout and "e explicit" in r.stdout

@@ -636,7 +636,9 @@ def test_public_names():
     """The package exports what it did (less reference_impact, now tests/rough_reference.py), each
     name with a numpydoc docstring; every module's exported names have Examples."""
     assert set(rough.__all__) == {"RoughSurface", "GreenwoodWilliamson", "RoughImpact", "gaussian_summits",
-                                  "sweep", "surface_from_params"}
+                                  "sweep", "surface_from_params", "Topography", "load_topography", "find_summits",
+                                  "topography_summits", "TopographySummits", "from_topography", "spectral_moments",
+                                  "SpectralMoments", "gw_from_moments", "SpectralGW", "spectral_surface"}
     for name in rough.__all__:
         doc = getattr(rough, name).__doc__
         assert "Examples" in doc and ("Parameters" in doc or "Attributes" in doc), name

@@ -8,6 +8,7 @@ import numpy as np
 from numba import float64 as _f8
 
 from ..rough import explicit as _explicit
+from ..rough.explicit import summit_w
 from ..rough.surface import RoughSurface
 from ..rough.common import FAILED as _FAILED, MAX_ITER as _MAX_ITER, NEEDS_TABLE as _NEEDS_TABLE, OK as _OK, \
     ONSET_BAND as _ONSET_BAND, energy_excess as _energy_excess
@@ -25,7 +26,7 @@ _ROUGH_ROWS = {"hertz": _explicit._hertz_row, "jg": _explicit._jg_row, "impact":
 
 
 def _rough_kernel_function(row):
-    """The Python source of a kernel summing ``row(law, w, d, onset)`` (4 values) over the summits
+    """The Python source of a kernel summing ``row(law, w, d, r_i, onset)`` (4 values) over the summits
     in contact, exactly as :func:`fastrest.rough.explicit._block_sums` does on the CPU: block b
     writes its partial sums to ``part[b]``.
 
@@ -37,20 +38,22 @@ def _rough_kernel_function(row):
     """
     tpb = _ROUGH_THREADS
 
-    def kernel(law, h, x, delta, onset, part):
+    def kernel(law, h, r, descending, x, delta, onset, part):
         sm = cuda.shared.array((tpb, 4), _f8)
         t = cuda.threadIdx.x
         i = cuda.grid(1)
         stride = cuda.gridsize(1)
         s0 = s1 = s2 = s3 = 0.0
         while i < h.size:
-            w = h[i] + x
-            if w > 0.0:
-                r0, r1, r2, r3 = row(law, w, h[i] + delta, onset)
+            if h[i] + x > 0.0:
+                w, d = summit_w(h[i], r[i], x, delta)
+                r0, r1, r2, r3 = row(law, w, d, r[i], onset)
                 s0 += r0
                 s1 += r1
                 s2 += r2
                 s3 += r3
+            elif descending:  # heights tallest first: the rest of this thread's summits are lower
+                break
             i += stride
         sm[t, 0] = s0
         sm[t, 1] = s1
@@ -73,10 +76,13 @@ def _rough_kernel_function(row):
 
 
 class _RoughSums:
-    """The per-summit sums of one surface on the device: heights h copied once, a partial-sum array."""
+    """The per-summit sums of one surface on the device: heights h and radius ratios r copied once,
+    a partial-sum array."""
 
-    def __init__(self, h):
+    def __init__(self, h, r, descending):
         self.h = cuda.to_device(np.ascontiguousarray(h))
+        self.r = cuda.to_device(np.ascontiguousarray(r))
+        self.h_host, self.r_host, self.descending = h, r, bool(descending)
         n = h.size
         self.blocks = max(1, min(ROUGH_BLOCKS, (n + _ROUGH_THREADS - 1) // _ROUGH_THREADS))
         self.part = cuda.device_array((self.blocks, 4), dtype=np.float64)
@@ -94,14 +100,15 @@ class _RoughSums:
         if kind not in _ROUGH_KERNELS:
             _ROUGH_KERNELS[kind] = cuda.jit(_rough_kernel_function(_ROUGH_ROWS[kind]))
         onset = abs(delta) < _ONSET_BAND
-        _ROUGH_KERNELS[kind][self.blocks, _ROUGH_THREADS](law, self.h, x, delta, onset, self.part)
+        _ROUGH_KERNELS[kind][self.blocks, _ROUGH_THREADS](law, self.h, self.r, self.descending, x, delta, onset,
+                                                            self.part)
         return _explicit._add_blocks(self.part.copy_to_host())
 
 
 def _rough_approach(sums, kind, law, e_hi, e_lo, x0, d0, w_table, w_model):
     """(status, x, delta): :func:`fastrest.rough.explicit._approach` with the sums on the device
     (the same safeguarded Newton step, :func:`~fastrest.rough.explicit._advance`, on the host)."""
-    w_cap = min(w_table, w_model)
+    w_cap = _explicit.x_reaching(sums.h_host, sums.r_host, min(w_table, w_model))
     st = _explicit._start(x0, d0)
     X, D, LO_X = _explicit._X, _explicit._D, _explicit._LO_X
     for _ in range(_MAX_ITER):
@@ -181,7 +188,7 @@ def rough_impact(surface: Any, V1: Any, M: float, unloading: str = "jcg", *, ext
                         "sums run on the GPU, the speeds stay on the host (copy_to_host())")
     sums = _ROUGH_DEVICE.get(surface)
     if sums is None:
-        sums = _ROUGH_DEVICE[surface] = _RoughSums(surface._h)
+        sums = _ROUGH_DEVICE[surface] = _RoughSums(surface._h, surface._radius_ratios(), surface._descending)
 
     def solve(e_hi, e_lo, unloading, extrapolate, M):
         x0, d0 = np.empty(e_hi.size), np.empty(e_hi.size)
@@ -201,12 +208,14 @@ def rough_impact(surface: Any, V1: Any, M: float, unloading: str = "jcg", *, ext
             for k in range(e_hi.size):
                 status, x, d = _rough_approach(sums, "jg", law, e_hi[k], e_lo[k], x0[k], d0[k], data.w_max,
                                                w_model)
-                out[0, k], out[1, k], out[2, k], out[3, k] = status, x, x, x
+                w_top = _explicit.largest_w(sums.h_host, sums.r_host, x)
+                out[0, k], out[1, k], out[2, k], out[3, k] = status, w_top, x, w_top
                 if status == _OK:
                     out[4:, k] = sums("impact", law, float(x), float(d))
             return out
 
-        return surface._solve(run, 2.0 * float(x0.max()), e_hi, unloading, extrapolate, M)
+        return surface._solve(run, 2.0 * float(_explicit.largest_w(sums.h_host, sums.r_host, float(x0.max()))),
+                              e_hi, unloading, extrapolate, M)
 
     return surface._impact(V1, M, unloading, extrapolate, solve)
 

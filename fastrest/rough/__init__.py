@@ -28,12 +28,25 @@ Where things are:
 * :mod:`.statistical`: the solver over a height distribution, on the expectations over the
   heights of :mod:`.expectations` (quadrature);
 * :mod:`.common`: what both share (one summit's terms, the impact energy);
-* :mod:`.sweeps`: :func:`sweep`, many surfaces here or on a Dask cluster.
+* :mod:`.sweeps`: :func:`sweep`, many surfaces here or on a Dask cluster;
+* :mod:`.topography`: :class:`Topography`, :func:`load_topography` (a measured height map in SI
+  units, read with the optional SurfaceTopography: ``pip install "fastrest[topography]"``);
+* :mod:`.summits`: :func:`find_summits`, :func:`topography_summits`, :func:`from_topography` (a map's
+  8-neighbour summits, their radii of curvature, the explicit surface they make); :mod:`.cli`:
+  ``fastrest rough FILE`` (docs/topography.md);
+* :mod:`.spectral`: :func:`spectral_moments`, :func:`gw_from_moments`, :func:`spectral_surface` (the
+  Greenwood-Williamson surface of a map's spectral moments, Nayak 1971, McCool 1986;
+  docs/rough-spectral.md).
 """
 from .heights import GreenwoodWilliamson, gaussian_summits
 from .result import RoughImpact
+from .spectral import SpectralGW, SpectralMoments, gw_from_moments, spectral_moments, spectral_surface
+from .summits import TopographySummits, find_summits, from_topography, topography_summits
 from .surface import RoughSurface
 from .sweeps import surface_from_params, sweep
+from .topography import Topography, load_topography
 
 __all__ = ["RoughSurface", "GreenwoodWilliamson", "RoughImpact", "gaussian_summits", "sweep",
-           "surface_from_params"]
+           "surface_from_params", "Topography", "load_topography", "find_summits", "topography_summits",
+           "from_topography", "TopographySummits", "spectral_moments", "gw_from_moments", "spectral_surface",
+           "SpectralMoments", "SpectralGW"]

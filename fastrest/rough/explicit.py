@@ -22,6 +22,14 @@ this solves (1 + delta)^2.5 - 1 = E - 1 to full relative accuracy in delta, as t
 solver does; so for a cluster of summits around the onset. (Summits in contact below w* = 1/2
 still limit delta to an absolute ~1e-16 (their F carries the rounding of their heights).)
 
+Summits of their own radii (``RoughSurface(..., radii=)``): each summit is normalised by its own
+critical values, omega_c r_i, P_c r_i^2, U_c r_i^3 (JGM eqs 4, 6, 24 scale as R, R^2, R^3), r_i =
+R_i/R_ref with the reference the tallest summit (r = 1, h = 0). The reference's w* = x still sets
+the flat's position: summit i is at w_i = (h_i + x)/r_i with w_i - 1 = (h_i + delta + (1 - r_i))/r_i
+(:func:`summit_w`), its energy terms weigh r_i^3, its force r_i^2 (so the Newton slope is still
+(5/2) times the force sum); the table must reach the largest w_i (:func:`largest_w`), not x. With
+every r_i = 1 each of these operations is exact, so one radius gives the same bits as before.
+
 Sums run in ``prange`` over fixed blocks of :data:`BLOCK` summits whose partial sums are added in
 block order: results do not depend on the number of threads.
 """
@@ -39,7 +47,7 @@ from .._threads import run_parallel
 from .common import (FAILED, MAX_ITER, NEEDS_TABLE, OK, ONSET_BAND, energy_excess, hertz_terms, jg_terms,
                      summit_values)
 
-__all__ = ["BLOCK", "hertz_estimate", "solve_impacts"]
+__all__ = ["BLOCK", "hertz_estimate", "solve_impacts", "radius_ratios", "largest_w"]
 
 #: Summits per block of the parallel sums (partial sums added in block order: deterministic).
 BLOCK = 8192
@@ -59,9 +67,24 @@ def _add_blocks(part):
 
 
 @jit(inline=True)
-def _block_sums(row, law, h, x, delta):
-    """Column sums of ``row(law, w, d, onset)`` (4 values) over the summits in contact, w* = w =
-    h_i + x > 0 with d = h_i + delta = w* - 1, in fixed blocks added in block order."""
+def summit_w(h_i, r_i, x, delta):
+    """w* and w* - 1 of one summit (-) with the reference summit at w* = x, delta = x - 1.
+
+    ``h_i``: its height below the tallest over the reference omega_c (<= 0); ``r_i``: its radius
+    over the reference radius. omega_c scales with R (JGM eq 4), so w* = (h_i + x)/r_i and w* - 1 =
+    (h_i + delta + (1 - r_i))/r_i: with r_i = 1 exactly h_i + x and h_i + delta (bit for bit).
+    """
+    return (h_i + x) / r_i, (h_i + delta + (1.0 - r_i)) / r_i
+
+
+@jit(inline=True)
+def _block_sums(row, law, summits, x, delta):
+    """Column sums of ``row(law, w, d, r_i, onset)`` (4 values) over the summits in contact,
+    h_i + x > 0, at w* = w and w* - 1 = d (:func:`summit_w`), in fixed blocks added in block order.
+
+    ``summits`` = (h, r, descending): with ``descending`` the heights are sorted tallest first and a
+    block stops at its first summit out of contact (the rest of it is lower)."""
+    h, r, descending = summits
     n = h.size
     nblock = (n + BLOCK - 1) // BLOCK
     part = np.zeros((nblock, 4))
@@ -69,55 +92,98 @@ def _block_sums(row, law, h, x, delta):
     for b in prange(nblock):
         s0 = s1 = s2 = s3 = 0.0  # accumulate in registers: rows of part share cache lines
         for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
-            w = h[i] + x
-            if w > 0.0:
-                r0, r1, r2, r3 = row(law, w, h[i] + delta, onset)
+            if h[i] + x > 0.0:
+                w, d = summit_w(h[i], r[i], x, delta)
+                r0, r1, r2, r3 = row(law, w, d, r[i], onset)
                 s0 += r0
                 s1 += r1
                 s2 += r2
                 s3 += r3
+            elif descending:
+                break
         part[b, 0], part[b, 1], part[b, 2], part[b, 3] = s0, s1, s2, s3
     return _add_blocks(part)
 
 
+# A summit of radius r R (r: over the reference radius) has U_c r^3, P_c r^2 and omega_c r (JGM eqs
+# 4, 6, 24): its energy terms weigh r^3, its force r^2 in the reference units; d/dx of its F(w*)
+# is (5/2) P*(w*) r^2 (w* = (h + x)/r), so the Newton slope stays the weighted force sum.
+
 @jit(inline=True)
-def _hertz_row(law, w, d, onset):
-    """(energy term, its magnitude, P*, counted from 1) of a Hertzian summit (``law`` unused)."""
+def _hertz_row(law, w, d, r, onset):
+    """(energy term, its magnitude, P*, counted from 1) of a Hertzian summit of radius ratio r,
+    in the reference summit's units (``law`` unused)."""
     f, p, k = hertz_terms(w, d, onset)
-    return f, abs(f), p, k
+    r2 = r * r
+    r3 = r2 * r
+    return r3 * f, r3 * abs(f), r2 * p, r3 * k
 
 
 @jit(inline=True)
-def _jg_row(law, w, d, onset):
+def _jg_row(law, w, d, r, onset):
     """:func:`_hertz_row` under the loading law of ``law``, the forward table."""
     f, p, k = jg_terms(law, w, d, onset)
-    return f, abs(f), p, k
+    r2 = r * r
+    r3 = r2 * r
+    return r3 * f, r3 * abs(f), r2 * p, r3 * k
 
 
 @jit(inline=True)
-def _impact_row(law, w, d, onset):
-    """(P*, L, 1, yielded) of a summit at the deepest approach (exact P*, JGM eqs 9, 14, 38)."""
+def _impact_row(law, w, d, r, onset):
+    """(P*, L, 1, yielded) of a summit at the deepest approach (exact P*, JGM eqs 9, 14, 38), P*
+    and L in the reference summit's units."""
     _, p, _, loss = summit_values(law, w, d)
-    return p, loss, 1.0, (1.0 if d > 0.0 else 0.0)
+    return r * r * p, r * r * r * loss, 1.0, (1.0 if d > 0.0 else 0.0)
 
 
 @jit(parallel=True)
-def _hertz_sums(h, x, delta):
-    """[sum of energy terms, sum of their magnitudes, sum P*, summits counted from w* = 1] with
-    every summit Hertzian (F = w^2.5; terms as :func:`.common.hertz_terms`)."""
-    return _block_sums(_hertz_row, None, h, x, delta)
+def _hertz_sums(summits, x, delta):
+    """[sum of energy terms, sum of their magnitudes, sum P*, summits counted from w* = 1 (their
+    U_c)] with every summit Hertzian (F = w^2.5; terms as :func:`.common.hertz_terms`), weighted
+    by each summit's critical values over the reference summit's."""
+    return _block_sums(_hertz_row, None, summits, x, delta)
 
 
 @jit(parallel=True)
-def _jg_sums(data, h, x, delta):
+def _jg_sums(data, summits, x, delta):
     """:func:`_hertz_sums` under the table's loading law (F and the slope P* from the forward table)."""
-    return _block_sums(_jg_row, data, h, x, delta)
+    return _block_sums(_jg_row, data, summits, x, delta)
 
 
 @jit(parallel=True)
-def _impact_sums(data, h, x, delta):
+def _impact_sums(data, summits, x, delta):
     """[sum P*, sum L, in contact, yielded] at the deepest approach (exact P*, JGM eqs 9, 14, 38)."""
-    return _block_sums(_impact_row, data, h, x, delta)
+    return _block_sums(_impact_row, data, summits, x, delta)
+
+
+@jit
+def x_reaching(h, r, w):
+    """The reference summit's w* (-) at which the first summit reaches w* = ``w``: min_i (w r_i - h_i)
+    (``w`` itself for one radius, as the tallest summit, h = 0, leads)."""
+    x = np.inf
+    if w == np.inf:
+        return x
+    for i in range(h.size):
+        x = min(x, w * r[i] - h[i])
+    return x
+
+
+@jit
+def largest_w(h, r, x):
+    """The largest w* (-) of any summit with the reference summit at w* = ``x``: max_i (h_i + x)/r_i
+    (``x`` itself for one radius).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fastrest.rough import explicit
+    >>> float(explicit.largest_w(np.array([0.0, -1.0]), np.array([1.0, 0.25]), 2.0))
+    4.0
+    """
+    w = -np.inf
+    for i in range(h.size):
+        w = max(w, (h[i] + x) / r[i])
+    return w
 
 
 @jit(inline=True)
@@ -174,44 +240,45 @@ def _advance(st, s_terms, s_abs, p_sum, n_1, e_hi, e_lo):
 
 
 @jit(inline=True)
-def _approach(sums, law, h, e_hi, e_lo, x0, d0, w_table, w_model):
-    """(status, x, delta) solving G = E with ``sums(law, h, x, delta)`` (see :func:`_hertz_sums`).
+def _approach(sums, law, summits, e_hi, e_lo, x0, d0, w_table, w_model):
+    """(status, x, delta) solving G = E with ``sums(law, summits, x, delta)`` (see :func:`_hertz_sums`).
 
-    Trial points beyond ``w_table`` return NEEDS_TABLE with x the w* asked for. Once the table
-    reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and NEEDS_TABLE
-    means the solution itself is beyond the model.
+    Trial points that take a summit beyond ``w_table`` return NEEDS_TABLE with x asked for. Once
+    the table reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and
+    NEEDS_TABLE means the solution itself is beyond the model.
     """
-    w_cap = min(w_table, w_model)
+    w_cap = x_reaching(summits[0], summits[1], min(w_table, w_model))
     st = _start(x0, d0)
     for _ in range(MAX_ITER):
         if st[_X] > w_cap:
             if not (w_table >= w_model and st[_LO_X] < w_cap):
                 return NEEDS_TABLE, st[_X], st[_D]
             st[_X], st[_D] = w_cap, w_cap - 1.0
-        t = sums(law, h, st[_X], st[_D])
+        t = sums(law, summits, st[_X], st[_D])
         if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
             return (OK if st[_X] <= w_cap else NEEDS_TABLE), st[_X], st[_D]
     return FAILED, st[_X], st[_D]
 
 
 @jit(inline=True)
-def _hertz_law_sums(law, h, x, delta):
+def _hertz_law_sums(law, summits, x, delta):
     """:func:`_hertz_sums` with the arguments of :func:`_jg_sums` (``law`` unused)."""
-    return _hertz_sums(h, x, delta)
+    return _hertz_sums(summits, x, delta)
 
 
 @jit
-def _hertz_approach_kernel(h, e_hi, e_lo, x0, d0):
+def _hertz_approach_kernel(summits, e_hi, e_lo, x0, d0):
     """(status, x, delta) of the impact of energy e_hi + e_lo (over U_c) with every summit Hertzian.
 
     The estimate (no table) that starts every solve under the loading law and sizes its forward table. ``h``: summit
-    heights below the tallest over omega_c (<= 0); (x0, d0): start, w* of the tallest and w* - 1.
+    heights below the tallest over omega_c (<= 0); ``r``: radii over the reference radius (the
+    tallest summit's); (x0, d0): start, w* of the tallest and w* - 1.
     """
-    return _approach(_hertz_law_sums, None, h, e_hi, e_lo, x0, d0, np.inf, np.inf)
+    return _approach(_hertz_law_sums, None, summits, e_hi, e_lo, x0, d0, np.inf, np.inf)
 
 
 @jit
-def _jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
+def _jg_approach_kernel(data, summits, e_hi, e_lo, x0, d0, w_model):
     """(status, x, delta) of the deepest approach under the table's loading law (JGM eq 29 summed
     over summits).
 
@@ -220,11 +287,11 @@ def _jg_approach_kernel(data, h, e_hi, e_lo, x0, d0, w_model):
     NEEDS_TABLE means the solution itself is beyond the model. Arguments as
     :func:`_hertz_approach_kernel`.
     """
-    return _approach(_jg_sums, data, h, e_hi, e_lo, x0, d0, data.w_max, w_model)
+    return _approach(_jg_sums, data, summits, e_hi, e_lo, x0, d0, data.w_max, w_model)
 
 
 @jit
-def _hertz_approach_array(h, e_hi, e_lo, out):
+def _hertz_approach_array(summits, e_hi, e_lo, out):
     """out[:, k] = :func:`_hertz_approach_kernel` of impact k, started from the tallest summit alone
     (x0 = E^0.4, with x0 - 1 from E - 1 without cancellation)."""
     for k in range(e_hi.size):
@@ -232,39 +299,64 @@ def _hertz_approach_array(h, e_hi, e_lo, out):
         d0 = x0 - 1.0
         if x0 >= 0.5 and x0 <= 2.0:
             d0 = math.expm1(0.4 * math.log1p(energy_excess(e_hi[k], e_lo[k], 1.0)))
-        out[0, k], out[1, k], out[2, k] = _hertz_approach_kernel(h, e_hi[k], e_lo[k], x0, d0)
+        out[0, k], out[1, k], out[2, k] = _hertz_approach_kernel(summits, e_hi[k], e_lo[k], x0, d0)
 
 
 @jit
-def _explicit_impacts_array(data, h, e_hi, e_lo, x0, d0, w_model, out):
-    """out[:, k] = (status, w* needed, x, x, sum P*, sum L, in contact, yielded) of impact k.
+def _explicit_impacts_array(data, summits, e_hi, e_lo, x0, d0, w_model, out):
+    """out[:, k] = (status, w* needed, x, largest w*, sum P*, sum L, in contact, yielded) of impact k.
 
-    x = w* of the tallest summit at the deepest approach (the same value serves as the position
-    and as the largest w*, the layout of the statistical solver's output).
+    x = w* of the reference (tallest) summit at the deepest approach, the position; the largest w*
+    of any summit (:func:`largest_w`) is x itself for one radius.
     """
     for k in range(e_hi.size):
-        status, x, d = _jg_approach_kernel(data, h, e_hi[k], e_lo[k], x0[k], d0[k], w_model)
-        out[0, k], out[1, k], out[2, k], out[3, k] = status, x, x, x
+        status, x, d = _jg_approach_kernel(data, summits, e_hi[k], e_lo[k], x0[k], d0[k], w_model)
+        w_top = largest_w(summits[0], summits[1], x)
+        out[0, k], out[1, k], out[2, k], out[3, k] = status, w_top, x, w_top
         if status == OK:
-            t = _impact_sums(data, h, x, d)
+            t = _impact_sums(data, summits, x, d)
             for j in range(4):
                 out[4 + j, k] = t[j]
 
 
-def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def radius_ratios(r: NDArray[np.float64] | None, n: int) -> NDArray[np.float64]:
+    """Radii over the reference radius as the kernels take them: ``r``, or n ones for one radius.
+
+    Examples
+    --------
+    >>> from fastrest.rough import explicit
+    >>> explicit.radius_ratios(None, 2)
+    array([1., 1.])
+    """
+    return np.ones(n) if r is None else r
+
+
+def _summits(h, r, descending):
+    """The kernels' (h, r, descending) (see :func:`_block_sums`)."""
+    return (h, radius_ratios(r, h.size), bool(descending))
+
+
+def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64],
+                   r: NDArray[np.float64] | None = None,
+                   descending: bool = False) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The deepest approach of every impact with all summits Hertzian (no forward table).
 
     Parameters
     ----------
     h : ndarray
-        Summit heights below the tallest over omega_c (-), <= 0, contiguous.
+        Summit heights below the tallest over omega_c (-), <= 0, contiguous; omega_c of the
+        reference summit (the tallest).
     e_hi, e_lo : ndarray
         Impact energies over U_c (-) as double plus correction (:func:`.common.energy_parts`).
+    r : ndarray, optional
+        Summit radii over the reference radius (-), > 0, 1 for the tallest summit; None: one radius.
+    descending : bool
+        ``h`` is sorted tallest first: the sums stop at the first summit out of contact.
 
     Returns
     -------
     (ndarray, ndarray)
-        x0: w* of the tallest summit (-); delta0 = x0 - 1 without cancellation (-).
+        x0: w* of the reference (tallest) summit (-); delta0 = x0 - 1 without cancellation (-).
 
     Raises
     ------
@@ -273,8 +365,9 @@ def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDAr
 
     Notes
     -----
-    Solves sum_i (h_i + x)^2.5 = E (JGM eq 29 with eq 19 per summit); the start of every solve under the loading law
-    and the size of its table.
+    Solves sum_i r_i^3 ((h_i + x)/r_i)^2.5 = E (JGM eq 29 with eq 19 per summit, each summit's
+    U_c and omega_c scaled by r_i^3 and r_i); the start of every solve under the loading law and
+    the size of its table.
 
     Examples
     --------
@@ -285,13 +378,15 @@ def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDAr
     (4.0, 3.0)
     """
     out = np.zeros((3, e_hi.size))
-    run_parallel(_hertz_approach_array, None, h, e_hi, e_lo, out)
+    run_parallel(_hertz_approach_array, None, _summits(h, r, descending), e_hi, e_lo, out)
     if np.any(out[0] != OK):
         raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
     return out[1].copy(), out[2].copy()
 
 
-def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64], x0: NDArray[np.float64], d0: NDArray[np.float64], w_model: float) -> NDArray[np.float64]:
+def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64],
+                  x0: NDArray[np.float64], d0: NDArray[np.float64], w_model: float,
+                  r: NDArray[np.float64] | None = None, descending: bool = False) -> NDArray[np.float64]:
     """Impacts on explicit summits under the loading law of the forward table ``data``.
 
     Parameters
@@ -307,19 +402,22 @@ def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], 
         Start of each solve: w* of the tallest summit and w* - 1 (:func:`hertz_estimate`).
     w_model : float
         w* (-) where the model ends (425, or a/R = 1 extrapolating).
+    r, descending
+        As :func:`hertz_estimate`.
 
     Returns
     -------
     ndarray, shape (8, n)
         Per impact: status (OK; NEEDS_TABLE: grow the table to the w* of row 1, or past the model's
-        end once the table reaches it; FAILED), w* needed, x, x (w* of the tallest summit at the
-        deepest approach, as position and as largest w*), sum P*, sum L, summits in contact,
-        summits yielded.
+        end once the table reaches it; FAILED), w* needed, x (w* of the tallest summit at the
+        deepest approach: the position), the largest w* of any summit (x for one radius), sum P*
+        and sum L (over the reference P_c and U_c), summits in contact, summits yielded.
 
     Notes
     -----
-    sum_i F(w_i) = E at the deepest approach (JGM eq 29 per summit) and 1 - e_s^2 = sum_i L(w_i)/E
-    with L the energy a summit dissipates (eq 38 with the unloading model of ``data``).
+    sum_i r_i^3 F(w_i) = E at the deepest approach (JGM eq 29 per summit) and 1 - e_s^2 =
+    sum_i r_i^3 L(w_i)/E with L the energy a summit dissipates (eq 38 with the unloading model of
+    ``data``).
 
     Examples
     --------
@@ -334,5 +432,5 @@ def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], 
     True
     """
     out = np.zeros((8, e_hi.size))
-    run_parallel(_explicit_impacts_array, None, data, h, e_hi, e_lo, x0, d0, w_model, out)
+    run_parallel(_explicit_impacts_array, None, data, _summits(h, r, descending), e_hi, e_lo, x0, d0, w_model, out)
     return out

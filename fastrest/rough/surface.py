@@ -2,7 +2,7 @@
 :mod:`.explicit` and :mod:`.statistical` on forward tables from :mod:`.forward_cache`)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 from numpy.typing import ArrayLike, NDArray
 
 if TYPE_CHECKING:
@@ -35,7 +35,8 @@ RHO_W_RANGE = (1e-6, 1e12)
 
 
 class RoughSurface:
-    """A rough surface of spherical summits of radius ``R_a``, struck by a rigid flat.
+    """A rough surface of spherical summits of radius ``R_a`` (or each its own, ``radii``), struck
+    by a rigid flat.
 
     Every summit follows the JGM single-sphere law on loading (Jackson-Green, or with strain
     hardening Ghaednia et al. 2019: ``et_ratio``) and unloads elastically; summits do not interact
@@ -45,11 +46,16 @@ class RoughSurface:
     ----------
     material : fastrest.Material
         The surface's (summits') material; the flat is rigid.
-    R_a : float
-        Summit radius of curvature (m), > 0.
+    R_a : float, optional
+        Summit radius of curvature (m), > 0, of every summit. Required unless ``radii`` is given.
     heights : array_like, optional
         Explicit summit heights (m), any datum, finite, at least one. The mean summit plane is
         their mean; d_min is reported from it.
+    radii : array_like, optional
+        Explicit surfaces only, keyword-only: each summit's radius of curvature (m), finite and
+        > 0, as many as ``heights`` (:func:`fastrest.rough.from_topography` measures them). Each
+        summit is normalised by its own critical values (omega_c, P_c, U_c scale as R, R^2, R^3,
+        JGM eqs 4, 6, 24). Give ``R_a`` or ``radii``, not both.
     gw : GreenwoodWilliamson or dict, optional
         Statistical description (summit density, height standard deviation, nominal area, pdf).
         Exactly one of ``heights`` and ``gw``.
@@ -76,7 +82,11 @@ class RoughSurface:
     law : fastrest.loading.LoadingLaw
         The loading law in use (resolved from ``loading`` and ``et_ratio``).
     omega_c, P_c, U_c : float
-        Critical interference (m), force (N) and energy (J) of one summit (JGM eqs 4, 6, 24).
+        Critical interference (m), force (N) and energy (J) of one summit (JGM eqs 4, 6, 24); with
+        ``radii``, of the reference summit, the tallest (``R_a`` is then its radius).
+    heights, radii : ndarray or None
+        Explicit surfaces: summit heights and radii (m) as given (``radii`` filled with ``R_a`` for
+        one radius); None for a statistical surface.
     sigma : float
         Standard deviation of the summit heights (m) (of the given heights, or of the model).
     n_summits : int or float
@@ -90,7 +100,8 @@ class RoughSurface:
         If ``material`` is not a Material, ``gw`` not a GreenwoodWilliamson or dict, or a number
         (``et_ratio`` included) is not real.
     ValueError
-        For R_a or heights out of range, neither or both of ``heights`` and ``gw``,
+        For R_a, heights or radii out of range, neither or both of ``heights`` and ``gw``, both
+        or neither of ``R_a`` and ``radii``, ``radii`` with ``gw``, as many radii as heights not given,
         sigma/omega_c outside :data:`RHO_W_RANGE` (statistical), ``et_ratio`` outside [0, 1), an
         unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``.
 
@@ -120,11 +131,17 @@ class RoughSurface:
     >>> h = rough.RoughSurface(steel, 100e-6, gw=dict(eta=1e10, sigma=50e-9, A_n=1e-4), et_ratio=0.01)
     >>> h.law.name, bool(h.impact(0.1, 0.01, "brake").e > s.impact(0.1, 0.01, "brake").e)
     ('ghaednia', True)
+
+    Summits of their own radii (m):
+
+    >>> t = rough.RoughSurface(steel, heights=[0.0, -2e-8, -5e-8], radii=[50e-6, 200e-6, 100e-6])
+    >>> t.R_a, t.radii.tolist()
+    (5e-05, [5e-05, 0.0002, 0.0001])
     """
 
-    def __init__(self, material: Material, R_a: float, heights: ArrayLike | None = None,
-                 gw: GreenwoodWilliamson | dict[str, Any] | None = None, *, et_ratio: float | None = None,
-                 loading: str | LoadingLaw | None = None) -> None:
+    def __init__(self, material: Material, R_a: float | None = None, heights: ArrayLike | None = None,
+                 gw: GreenwoodWilliamson | dict[str, Any] | None = None, *, radii: ArrayLike | None = None,
+                 et_ratio: float | None = None, loading: str | LoadingLaw | None = None) -> None:
         if not isinstance(material, Material):
             raise TypeError("material must be a fastrest.Material")
         self.material = material
@@ -137,15 +154,24 @@ class RoughSurface:
         self.et_ratio = own if own > 0.0 else float(real_scalar(et_ratio, "et_ratio"))
         self.law = resolve_loading(loading, self.et_ratio)  # validates et_ratio and loading
         self.loading = None if loading is None else self.law.name
+        if heights is None and gw is None:
+            raise TypeError("give heights= (explicit summits) or gw= (statistical): neither was given")
+        if heights is not None and gw is not None:
+            raise ValueError("give exactly one of heights= (explicit summits) and gw= (statistical)")
+        if radii is not None:
+            if R_a is not None:
+                raise ValueError("give R_a (one radius for every summit) or radii= (each summit's), not both")
+            if heights is None:
+                raise ValueError("radii= needs explicit summits (heights=); a statistical surface (gw=) has "
+                                 "one radius, R_a")
+            heights, R_a = self._check_radii(material, heights, radii)
+        elif R_a is None:
+            raise TypeError("give R_a (m, the summit radius) or radii= (m, each summit's): neither was given")
         self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
         try:
             self.impact_params = Impact(material, self.R_a, mass=1.0)  # mass unused here
         except ValueError as exc:
             raise ValueError(f"R_a = {self.R_a!r} m: {exc}") from None
-        if heights is None and gw is None:
-            raise TypeError("give heights= (explicit summits) or gw= (statistical): neither was given")
-        if heights is not None and gw is not None:
-            raise ValueError("give exactly one of heights= (explicit summits) and gw= (statistical)")
         ip = self.impact_params
         self.eps_y, self.nu = float(ip.eps_y), float(ip.nu)
         warn_if_outside_validated(self.eps_y, self.nu)
@@ -161,18 +187,72 @@ class RoughSurface:
     loading: str | None = None
     law: LoadingLaw = LAWS[NAMES[0]]
 
+    # radii over the reference radius of an explicit surface with radii=; None: one radius (and for
+    # a surface pickled before radii)
+    _r: NDArray[np.float64] | None = None
+
     # set by _init_explicit or _init_statistical: one of heights and gw is None
     kind: str
     heights: Any
     gw: Any
     n_summits: float
 
-    def _init_explicit(self, heights):
+    @staticmethod
+    def _heights(heights):
         z = np.array(as_float_array(heights, "heights"), dtype=np.float64).ravel()
         if z.size == 0:
             raise ValueError("heights is empty: a surface needs at least one summit")
         if not np.all(np.isfinite(z)):
             raise ValueError("heights must be finite (m)")
+        return z
+
+    def _check_radii(self, material, heights, radii):
+        """(heights, the reference radius R_a) of a surface with ``radii``. Unless every radius is
+        the same (then the surface is one of R_a, bit for bit), sets ``_r``, the radii over the
+        reference radius (the tallest summit's, so that its r is exactly 1), in the kernels' order:
+        tallest first (``_order``), so that the sums stop at the first summit out of contact."""
+        z = self._heights(heights)
+        R = np.array(as_float_array(radii, "radii"), dtype=np.float64).ravel()
+        if R.size != z.size:
+            raise ValueError(f"radii must give one radius (m) per summit: {z.size} heights, {R.size} radii")
+        bad = ~(np.isfinite(R) & (R > 0.0))
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"radii (m, summit radii of curvature) must be finite and > 0; radii[{k}] = {float(R[k])!r}")
+        for k in (int(R.argmin()), int(R.argmax())):  # every summit's critical values exist
+            try:
+                Impact(material, float(R[k]), mass=1.0)
+            except ValueError as exc:
+                raise ValueError(f"radii[{k}] = {float(R[k])!r} m: {exc}") from None
+        R_ref = float(R[int(z.argmax())])
+        if np.all(R == R_ref):
+            return z, R_ref
+        self._order = np.argsort(-z, kind="stable")  # the tallest (z.argmax(), the first) leads
+        self._r = np.ascontiguousarray((R / R_ref)[self._order])
+        self._radii = R
+        return z, R_ref
+
+    @property
+    def radii(self) -> NDArray[np.float64] | None:
+        """Summit radii of curvature (m) of an explicit surface (``R_a`` repeated for one radius);
+        None for a statistical surface."""
+        if self.kind != "explicit":
+            return None
+        if self._r is None:
+            return np.full(self.heights.size, self.R_a)
+        return cast(NDArray[np.float64], self._radii)
+
+    def _radius_ratios(self):
+        """Radii over the reference radius, as the explicit kernels take them (ones for one radius)."""
+        return explicit.radius_ratios(self._r, self._h.size)
+
+    @property
+    def _descending(self):
+        """The kernels' heights are sorted tallest first (a surface with radii)."""
+        return self._r is not None
+
+    def _init_explicit(self, heights):
+        z = self._heights(heights)
         self.kind, self.heights, self.gw = "explicit", z, None
         self.z_top = float(z.max())
         with np.errstate(over="ignore", invalid="ignore"):
@@ -182,7 +262,8 @@ class RoughSurface:
             raise ValueError("heights span more than the range of a float64 (m): their standard "
                              "deviation overflows")
         self.n_summits = z.size
-        self._h = np.ascontiguousarray((z - self.z_top) / self.omega_c)
+        h = (z - self.z_top) / self.omega_c
+        self._h = np.ascontiguousarray(h if self._r is None else h[self._order])
 
     def _init_statistical(self, gw):
         if isinstance(gw, dict):
@@ -205,7 +286,9 @@ class RoughSurface:
         desc = (f"{self.n_summits} summits" if self.kind == "explicit"
                 else f"GW eta={self.gw.eta!r}, A_n={self.gw.A_n!r}")
         law = "".join(f", {k}={v!r}" for k, v in self._law_params().items())
-        return (f"RoughSurface({self.material!r}, R_a={self.R_a!r}, {desc}, sigma={self.sigma!r}, "
+        radius = (f"R_a={self.R_a!r}" if self._r is None
+                  else f"radii {float(self._radii.min())!r} to {float(self._radii.max())!r}")
+        return (f"RoughSurface({self.material!r}, {radius}, {desc}, sigma={self.sigma!r}, "
                 f"psi={self.plasticity_index:.4g}{law})")
 
     def _law_params(self):
@@ -269,8 +352,8 @@ class RoughSurface:
         Returns
         -------
         dict
-            material, R_a (m), and heights (m) or gw, and et_ratio (-) and loading where not the
-            defaults: ``RoughSurface(**s.params())`` is an equal surface (used by
+            material, R_a (m) or radii (m), and heights (m) or gw, and et_ratio (-) and loading
+            where not the defaults: ``RoughSurface(**s.params())`` is an equal surface (used by
             :func:`fastrest.rough.sweep` to ship surfaces to Dask).
 
         Examples
@@ -281,7 +364,11 @@ class RoughSurface:
         >>> sorted(rough.RoughSurface(**s.params()).params())
         ['R_a', 'heights', 'material']
         """
-        p = {"material": self.material, "R_a": self.R_a}
+        p: dict[str, Any] = {"material": self.material}
+        if self._r is None:
+            p["R_a"] = self.R_a
+        else:
+            p["radii"] = self._radii
         if self.kind == "explicit":
             p["heights"] = self.heights
         else:
@@ -410,7 +497,9 @@ class RoughSurface:
         lies at or below the tallest). Such an impact is certainly past the model's range; below
         the bound the solver finds out (and says so) itself."""
         w_end = self._tables.limit(extrapolate)
-        cap = float(self.n_summits) * f_star_kernel(w_end, self.eps_y, self.nu, self.law.code, self.et_ratio)
+        # sum of the summits' U_c over the reference one: N for one radius
+        weight = float(self.n_summits) if self._r is None else float(np.sum(self._r**3))
+        cap = weight * f_star_kernel(w_end, self.eps_y, self.nu, self.law.code, self.et_ratio)
         over = e_hi > cap
         if not np.any(over):
             return
@@ -420,7 +509,7 @@ class RoughSurface:
         raise ValueError(
             f"the impact at V1 = {v!r} m/s (M = {M!r} kg) drives summits past the model's range: its energy "
             f"(1/2) M V1^2 = {e_j:.6g} J exceeds {cap_j:.6g} J, the most the surface's N = {self.n_summits:.6g} "
-            f"summits can absorb before the tallest reaches w* = {w_end:.6g} "
+            f"summits can absorb before {'the tallest' if self._r is None else 'one'} reaches w* = {w_end:.6g} "
             f"({'a/R = 1' if extrapolate else 'JGM range'}). V1 must be below "
             f"{math.sqrt(2.0 * cap_j / M):.6g} m/s at this M (M below {2.0 * cap_j / v**2:.6g} kg at this V1)")
 
@@ -448,13 +537,13 @@ class RoughSurface:
                                          self.n_summits, self._speed(energy, M), M)
 
     def _solve_explicit(self, e_hi, e_lo, unloading, extrapolate, M):
-        h = self._h
+        h, r, desc = self._h, self._radius_ratios(), self._descending
         # the Hertz estimate starts every solve (independent of the table held, so results do not
         # depend on what the surface computed before); JG/Ghaednia summits sink deeper: table to 2x
-        x0, d0 = explicit.hertz_estimate(h, e_hi, e_lo)
+        x0, d0 = explicit.hertz_estimate(h, e_hi, e_lo, r, desc)
         return self._solve(
-            lambda data, w_model: explicit.solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model),
-            2.0 * float(x0.max()), e_hi, unloading, extrapolate, M)
+            lambda data, w_model: explicit.solve_impacts(data, h, e_hi, e_lo, x0, d0, w_model, r, desc),
+            2.0 * float(explicit.largest_w(h, r, float(x0.max()))), e_hi, unloading, extrapolate, M)
 
     def _solve_statistical(self, energy, unloading, extrapolate, M):
         g = self._gwdata

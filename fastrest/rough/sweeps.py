@@ -95,7 +95,7 @@ def _failed(v, m, unloading):
 def surface_from_params(material: Material | None = None, R_a: Any = None, heights: ArrayLike | None = None,
                         gw: GreenwoodWilliamson | dict[str, Any] | None = None, gaussian: Sequence[Any] | None = None, E: float | None = None,
                         nu: float | None = None, Sy: float | None = None, et_ratio: float | None = None,
-                        loading: str | None = None) -> RoughSurface:
+                        loading: str | None = None, radii: ArrayLike | None = None) -> RoughSurface:
     """Build a :class:`RoughSurface` from plain parameters: the default factory of :func:`sweep`.
 
     Parameters
@@ -103,9 +103,11 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
     material : fastrest.Material, optional
         The summits' material; or give ``E``, ``nu``, ``Sy``.
     R_a : float
-        Summit radius (m), > 0.
+        Summit radius (m), > 0 (or ``radii``).
     heights : array_like, optional
         Explicit summit heights (m).
+    radii : array_like, optional
+        Each explicit summit's radius (m), instead of ``R_a`` (:class:`RoughSurface`).
     gw : GreenwoodWilliamson or dict, optional
         Statistical description.
     gaussian : (int, float) or (int, float, int), optional
@@ -151,7 +153,7 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
         if heights is not None:
             raise ValueError("give only one of heights= and gaussian=")
         heights = gaussian_summits(*gaussian)
-    return RoughSurface(material, R_a, heights=heights, gw=gw, et_ratio=et_ratio, loading=loading)
+    return RoughSurface(material, R_a, heights=heights, gw=gw, radii=radii, et_ratio=et_ratio, loading=loading)
 
 
 def _sweep_task(factory, params, array_keys, *args):
@@ -170,9 +172,9 @@ def _sweep_task(factory, params, array_keys, *args):
         return exc
 
 
-def _rebuild_surface(material, R_a, heights=None, gw=None, et_ratio=None, loading=None):
+def _rebuild_surface(material, R_a=None, heights=None, gw=None, et_ratio=None, loading=None, radii=None):
     """Factory for RoughSurface objects sent to Dask (their :meth:`RoughSurface.params`)."""
-    return RoughSurface(material, R_a, heights=heights, gw=gw, et_ratio=et_ratio, loading=loading)
+    return RoughSurface(material, R_a, heights=heights, gw=gw, radii=radii, et_ratio=et_ratio, loading=loading)
 
 
 def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jcg", *, extrapolate: bool = False,
