@@ -25,7 +25,7 @@ still limit delta to an absolute ~1e-16 (their F carries the rounding of their h
 Summits of their own radii (``RoughSurface(..., radii=)``): each summit is normalised by its own
 critical values, omega_c r_i, P_c r_i^2, U_c r_i^3 (JGM eqs 4, 6, 24 scale as R, R^2, R^3), r_i =
 R_i/R_ref with the reference the tallest summit (r = 1, h = 0). The reference's w* = x still sets
-the flat's position: summit i is at w_i = (h_i + x)/r_i with w_i - 1 = (h_i + delta + (1 - r_i))/r_i
+the flat's position: summit i is at w_i = (h_i + x)/r_i with w_i - 1 = (h_i + (delta + (1 - r_i)))/r_i
 (:func:`summit_w`), its energy terms weigh r_i^3, its force r_i^2 (so the Newton slope is still
 (5/2) times the force sum); the table must reach the largest w_i (:func:`largest_w`), not x. With
 every r_i = 1 each of these operations is exact, so one radius gives the same bits as before.
@@ -40,7 +40,8 @@ from numpy.typing import ArrayLike, NDArray
 import math
 
 import numpy as np
-from numba import prange
+from numba import prange, types
+from numba.extending import overload
 
 from .._jit import jit
 from .._threads import run_parallel
@@ -72,9 +73,34 @@ def summit_w(h_i, r_i, x, delta):
 
     ``h_i``: its height below the tallest over the reference omega_c (<= 0); ``r_i``: its radius
     over the reference radius. omega_c scales with R (JGM eq 4), so w* = (h_i + x)/r_i and w* - 1 =
-    (h_i + delta + (1 - r_i))/r_i: with r_i = 1 exactly h_i + x and h_i + delta (bit for bit).
+    (h_i + (delta + (1 - r_i)))/r_i: with r_i = 1 exactly h_i + x and h_i + delta (bit for bit).
     """
-    return (h_i + x) / r_i, (h_i + delta + (1.0 - r_i)) / r_i
+    return (h_i + x) / r_i, (h_i + (delta + (1.0 - r_i))) / r_i
+
+
+def _ratio(r, i):
+    """r[i], or 1.0 where ``r`` is None (one radius: the kernels compile the constant, so a uniform
+    surface pays no load and no division); jit code only."""
+    raise TypeError("_ratio is for Numba code")
+
+
+@overload(_ratio)
+def _ratio_impl(r, i):
+    if isinstance(r, types.NoneType):
+        return lambda r, i: 1.0
+    return lambda r, i: r[i]
+
+
+def _one_radius(r):
+    """True where ``r`` is None (a compile-time constant); jit code only."""
+    raise TypeError("_one_radius is for Numba code")
+
+
+@overload(_one_radius)
+def _one_radius_impl(r):
+    if isinstance(r, types.NoneType):
+        return lambda r: True
+    return lambda r: False
 
 
 @jit(inline=True)
@@ -82,8 +108,9 @@ def _block_sums(row, law, summits, x, delta):
     """Column sums of ``row(law, w, d, r_i, onset)`` (4 values) over the summits in contact,
     h_i + x > 0, at w* = w and w* - 1 = d (:func:`summit_w`), in fixed blocks added in block order.
 
-    ``summits`` = (h, r, descending): with ``descending`` the heights are sorted tallest first and a
-    block stops at its first summit out of contact (the rest of it is lower)."""
+    ``summits`` = (h, r, descending): r None for one radius; with ``descending`` the heights are
+    sorted tallest first and a block stops at its first summit out of contact (the rest of it is
+    lower)."""
     h, r, descending = summits
     n = h.size
     nblock = (n + BLOCK - 1) // BLOCK
@@ -93,8 +120,9 @@ def _block_sums(row, law, summits, x, delta):
         s0 = s1 = s2 = s3 = 0.0  # accumulate in registers: rows of part share cache lines
         for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
             if h[i] + x > 0.0:
-                w, d = summit_w(h[i], r[i], x, delta)
-                r0, r1, r2, r3 = row(law, w, d, r[i], onset)
+                r_i = _ratio(r, i)
+                w, d = summit_w(h[i], r_i, x, delta)
+                r0, r1, r2, r3 = row(law, w, d, r_i, onset)
                 s0 += r0
                 s1 += r1
                 s2 += r2
@@ -161,10 +189,10 @@ def x_reaching(h, r, w):
     """The reference summit's w* (-) at which the first summit reaches w* = ``w``: min_i (w r_i - h_i)
     (``w`` itself for one radius, as the tallest summit, h = 0, leads)."""
     x = np.inf
-    if w == np.inf:
-        return x
+    if w == np.inf or _one_radius(r):  # one radius: min_i (w - h_i) = w, as max h_i = 0
+        return w
     for i in range(h.size):
-        x = min(x, w * r[i] - h[i])
+        x = min(x, w * _ratio(r, i) - h[i])
     return x
 
 
@@ -180,9 +208,11 @@ def largest_w(h, r, x):
     >>> float(explicit.largest_w(np.array([0.0, -1.0]), np.array([1.0, 0.25]), 2.0))
     4.0
     """
+    if _one_radius(r):  # max_i (h_i + x) = x, as max h_i = 0
+        return x
     w = -np.inf
     for i in range(h.size):
-        w = max(w, (h[i] + x) / r[i])
+        w = max(w, (h[i] + x) / _ratio(r, i))
     return w
 
 
@@ -320,7 +350,7 @@ def _explicit_impacts_array(data, summits, e_hi, e_lo, x0, d0, w_model, out):
 
 
 def radius_ratios(r: NDArray[np.float64] | None, n: int) -> NDArray[np.float64]:
-    """Radii over the reference radius as the kernels take them: ``r``, or n ones for one radius.
+    """Radii over the reference radius as an array: ``r``, or n ones for one radius (the GPU's).
 
     Examples
     --------
@@ -332,8 +362,8 @@ def radius_ratios(r: NDArray[np.float64] | None, n: int) -> NDArray[np.float64]:
 
 
 def _summits(h, r, descending):
-    """The kernels' (h, r, descending) (see :func:`_block_sums`)."""
-    return (h, radius_ratios(r, h.size), bool(descending))
+    """The kernels' (h, r, descending) (see :func:`_block_sums`; r None for one radius)."""
+    return (h, r, bool(descending))
 
 
 def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64],

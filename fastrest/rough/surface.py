@@ -537,7 +537,7 @@ class RoughSurface:
                                          self.n_summits, self._speed(energy, M), M)
 
     def _solve_explicit(self, e_hi, e_lo, unloading, extrapolate, M):
-        h, r, desc = self._h, self._radius_ratios(), self._descending
+        h, r, desc = self._h, self._r, self._descending
         # the Hertz estimate starts every solve (independent of the table held, so results do not
         # depend on what the surface computed before); JG/Ghaednia summits sink deeper: table to 2x
         x0, d0 = explicit.hertz_estimate(h, e_hi, e_lo, r, desc)
