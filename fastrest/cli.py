@@ -160,8 +160,9 @@ def _cmd_warmup(args):
                       _threads.run_parallel(table_array_parallel, None, t.data, 1, big, big * 0.001,
                                             big * 0.066, np.empty(big.size))))
         step("jit functions (curve, scene, table)", lambda: _warm_jit(c, s, t, e_curve, e_material, e_table))
-        step("rough surfaces (explicit, statistical)",
+        step("rough surfaces (explicit with one radius and with radii, statistical)",
              lambda: (rough.RoughSurface(steel, 1e-4, heights=[0.0, 1e-7]).impact(1e-3, 1e-3),
+                      rough.RoughSurface(steel, heights=[0.0, 1e-7], radii=[1e-4, 2e-4]).impact(1e-3, 1e-3),
                       rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))
                       .impact([1e-4, 2e-4, 5e-4, 1e-3], 1e-3),
                       rough.RoughSurface(steel, 1e-4, gw=dict(eta=1e10, sigma=0.5 * ip.omega_c, A_n=1e-6))

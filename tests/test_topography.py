@@ -304,3 +304,15 @@ def test_topography_built_directly_is_checked_and_read_only():
         Topography(z, 1.0, 1.0, 1, "x")
     with pytest.raises(ValueError, match="2-D"):
         Topography(np.zeros(5), 1.0, 1.0, False, "x")
+
+
+def test_topography_and_summits_pickle():
+    """What users build pickles (Dask ships it): the unpickled map is checked and read-only again."""
+    z = np.random.default_rng(4).normal(size=(24, 20)) * 1e-7
+    t = Topography(z, 1e-6, 2e-6, True, "noise")
+    t2 = pickle.loads(pickle.dumps(t))
+    assert np.array_equal(t2.heights, t.heights) and not t2.heights.flags.writeable
+    assert (t2.dx, t2.dy, t2.periodic, t2.source) == (1e-6, 2e-6, True, "noise")
+    found = topography_summits(t)
+    again = pickle.loads(pickle.dumps(found))
+    assert np.array_equal(again.radii, found.radii) and again.counts() == found.counts()

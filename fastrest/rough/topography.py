@@ -93,6 +93,10 @@ class Topography:
         object.__setattr__(self, "dy", dy)
         object.__setattr__(self, "periodic", check_bool(self.periodic, "periodic"))
 
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        # rebuilt through the constructor: the unpickled heights are checked and read-only again
+        return (Topography, (np.array(self.heights), self.dx, self.dy, self.periodic, self.source))
+
     @property
     def shape(self) -> tuple[int, int]:
         """(nx, ny): pixels along axis 0 and axis 1."""
