@@ -246,16 +246,43 @@ def test_flat_map_has_no_summits():
     assert m.m0 == m.m2 == m.m4 == 0.0
     with pytest.raises(ValueError, match="flat"):
         gw_from_moments(m.m0, m.m2, m.m4, 1e-10)
-    with pytest.raises(ValueError, match="m0"):
+    with pytest.raises(ValueError, match="does not vary along axis 0"):
         spectral_surface(topo(np.zeros((16, 16)), 1e-6), STEEL)
 
 
-@pytest.mark.parametrize("bad", [np.zeros((8, 8)), [[0.0] * 8] * 8, None, 1.0, "map.txt"])
+@pytest.mark.parametrize("bad", [np.zeros((8, 8)), [[0.0] * 8] * 8, None, 1.0])
 def test_not_a_topography(bad):
     with pytest.raises(TypeError, match="Topography"):
         spectral_moments(bad)
     with pytest.raises(TypeError, match="Topography"):
         spectral_surface(bad, STEEL)
+
+
+def test_a_path_is_read_and_duck_typed_maps_are_checked(tmp_path):
+    """A path goes through load_topography (a missing file is its ValueError); an object with
+    heights, dx, dy, periodic is checked as a Topography (strings, bools, periodic='no' refused)."""
+    with pytest.raises(ValueError, match="does not exist"):
+        spectral_surface(str(tmp_path / "map.txt"), STEEL)
+    for heights, periodic in (([["a"] * 8] * 8, True), (np.ones((8, 8), bool), True), (np.ones((8, 8)), "no")):
+        with pytest.raises(TypeError, match="heights|periodic"):
+            spectral_moments(SimpleNamespace(heights=heights, dx=1e-6, dy=1e-6, periodic=periodic))
+
+
+@pytest.mark.filterwarnings("ignore::fastrest.rough.spectral.AnisotropyWarning")
+@pytest.mark.parametrize("n", [3, 5])
+def test_maps_too_small_for_the_spectral_model(n):
+    """Nayak's density above 1/4 summit per pixel (strict maxima are never neighbours): refused
+    (white noise on 3 x 3 and 5 x 5 pixels: 0.37 and 0.43 per pixel)."""
+    z = np.random.default_rng(1).normal(size=(n, n)) * 1e-7
+    with pytest.raises(ValueError, match="summits per pixel"):
+        spectral_surface(topo(z, 1e-6), STEEL)
+
+
+def test_a_corrugation_has_no_summits():
+    x = np.arange(64)
+    z = 1e-7 * np.cos(2 * np.pi * x / 16)[:, None] * np.ones((1, 64))
+    with pytest.warns(Warning), pytest.raises(ValueError, match="does not vary along axis 1"):
+        spectral_surface(topo(z, 1e-6), STEEL)
 
 
 def test_bad_maps_and_method():

@@ -161,7 +161,9 @@ def test_topography_object_and_properties():
     np.testing.assert_allclose(t.physical_size, (32e-12, 48e-12), rtol=1e-15)  # um -> m
     np.testing.assert_allclose(t.area, 32e-12 * 48e-12, rtol=1e-15)
     np.testing.assert_allclose(t.heights, (t0.heights() - t0.heights().mean()) * 1e-6, rtol=1e-12, atol=1e-22)
-    assert load_topography(t0).periodic is False  # a plane removed: no longer periodic (SurfaceTopography)
+    assert load_topography(t0).periodic is True  # the default for a periodic map: the mean removed
+    with pytest.warns(UserWarning, match="non-periodic"):
+        assert load_topography(t0, detrend="height").periodic is False  # a plane removed (SurfaceTopography)
 
 
 @pytest.mark.filterwarnings("ignore:`axes` should not be:DeprecationWarning")
@@ -188,12 +190,17 @@ def test_cutoff():
     np.testing.assert_allclose(out.heights, wave, rtol=0, atol=1e-12 * 1e-7)
 
 
-def test_bad_files_and_maps(tmp_path):
+def test_bad_files_and_maps(tmp_path, capfd):
     junk = tmp_path / "junk.x3p"
     junk.write_bytes(os.urandom(300))
     with pytest.raises(ValueError, match="cannot read file .*junk.x3p"):
         load_topography(junk)
-    with pytest.raises(ValueError, match="cannot read file .*missing"):
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""  # SurfaceTopography's readers print what they try: kept quiet
+    (tmp_path / "adir").mkdir()
+    with pytest.raises(ValueError, match="adir' is a directory"):
+        load_topography(tmp_path / "adir")
+    with pytest.raises(ValueError, match="file .*missing.x3p' does not exist"):
         load_topography(tmp_path / "missing.x3p")
     np.savetxt(tmp_path / "plain.txt", np.random.default_rng(0).normal(size=(6, 5)))
     with pytest.raises(ValueError, match="units of length .*give unit"):
@@ -213,7 +220,7 @@ def test_bad_files_and_maps(tmp_path):
     for z in (1e-9 * (x + 2 * y), 1e-9 * ((x - 4) ** 2 + (y - 4) ** 2)):  # a plane and a bowl
         with pytest.raises(ValueError, match="no summit"):
             from_topography(ST.Topography(z, (9e-6, 8e-6), unit="m"), STEEL, detrend="none")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["junk.x3p", "plain.txt"]  # nothing written
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["adir", "junk.x3p", "plain.txt"]  # nothing written
 
 
 def test_too_large_is_refused_before_reading(tmp_path, monkeypatch):
@@ -316,3 +323,25 @@ def test_topography_and_summits_pickle():
     found = topography_summits(t)
     again = pickle.loads(pickle.dumps(found))
     assert np.array_equal(again.radii, found.radii) and again.counts() == found.counts()
+
+
+def test_results_are_read_only():
+    """The arrays a surface computes with, and the frozen summit record's, cannot be changed under it."""
+    z, dx, dy = caps_map(CAPS)
+    s = from_topography(Topography(z, dx, dy, False, "caps"), STEEL)
+    for a in (s.heights, s.radii, s.topography_summits.heights, s.topography_summits.radii,
+              s.topography_summits.i):
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 1.0
+
+
+def test_periodic_option_of_the_cli(tmp_path, capsys):
+    """--periodic reads an .x3p map (which cannot say so) as one period: the mean is removed, the
+    edges are neighbours."""
+    t0 = fourier_synthesis((32, 32), (32e-6, 32e-6), hurst=0.8, rms_height=1e-7, unit="m",
+                           rng=np.random.default_rng(5), periodic=True)
+    path = str(tmp_path / "p.x3p")
+    t0.to_x3p(path)
+    assert cli.main(["rough", path, *ARGS, "--periodic", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["topography"]["periodic"] is True and out["detrend"] == "mean" and out["topography"]["n_border"] == 0

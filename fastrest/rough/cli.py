@@ -14,7 +14,7 @@ __all__ = ["add_parser"]
 
 _MATERIAL = {"E": "--E", "nu": "--nu", "Sy": "--Sy", "Et": "--Et"}
 _READING = {"cutoff": "--cutoff", "detrend": "--detrend", "unit": "--unit", "physical_size": "--physical-size",
-            "M": "--M", "V1": "--V"}
+            "periodic": "--periodic", "M": "--M", "V1": "--V"}
 
 
 def _cmd_rough(args: argparse.Namespace) -> int:
@@ -26,7 +26,8 @@ def _cmd_rough(args: argparse.Namespace) -> int:
     try:
         with cli_names(_READING, out=None):
             surface = from_topography(args.file, material, detrend=args.detrend, cutoff=args.cutoff,
-                                      unit=args.unit, physical_size=args.physical_size)
+                                      unit=args.unit, physical_size=args.physical_size,
+                                      periodic=True if args.periodic else None)
             r = surface.impact(np.asarray(args.V, dtype=float), args.M, args.unloading,
                                extrapolate=args.extrapolate)
     except ImportError as exc:  # SurfaceTopography missing: say how to install it
@@ -48,7 +49,7 @@ def _cmd_rough(args: argparse.Namespace) -> int:
                "plasticity_index": float(surface.plasticity_index)}
     if args.json:
         print(json.dumps({"topography": summary, "M": args.M, "unloading": args.unloading,
-                          "detrend": args.detrend, "cutoff": args.cutoff, "impacts": rows}, indent=2))
+                          "detrend": args.detrend or ("mean" if found.periodic else "height"), "cutoff": args.cutoff, "impacts": rows}, indent=2))
         return 0
     print(f"rough surface from {found.source}: {found.n_pixels} pixels, dx = {found.dx:.6g} m, "
           f"dy = {found.dy:.6g} m, {'periodic' if found.periodic else 'non-periodic'}")
@@ -105,8 +106,12 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argp
     p.add_argument("--unloading", choices=NAMES, default="jcg",
                    help="unloading model of every summit (fastrest.unloading; default jcg)")
     p.add_argument("--cutoff", type=float, help="remove wavelengths shorter than this (m) (default: no filter)")
-    p.add_argument("--detrend", choices=("height", "mean", "slope", "curvature", "none"), default="height",
-                   help="trend removed (SurfaceTopography's detrend; default height: the best plane)")
+    p.add_argument("--detrend", choices=("height", "mean", "slope", "curvature", "none"),
+                   help="trend removed (SurfaceTopography's detrend; default: mean for a periodic map, height "
+                        "(the best plane) otherwise)")
+    p.add_argument("--periodic", action="store_true",
+                   help="the map is one period of a periodic surface (edges are neighbours; .x3p and many "
+                        "formats do not say)")
     p.add_argument("--unit", help="length unit of a file that states none (m, um, nm, ...)")
     p.add_argument("--physical-size", dest="physical_size", type=float, nargs=2, metavar=("SX", "SY"),
                    help="physical size (m) of a file that states none")

@@ -230,8 +230,9 @@ def check_speeds(V1):
     flat = kernel_array(v)
     bad = ~(np.isfinite(flat) & (flat > 0))
     if np.any(bad):
-        raise ValueError(f"V1 must be finite and > 0 (m/s); got {flat[bad][0]!r} (at V1 = 0 no "
-                         "summit is ever touched and e_s is undefined)")
+        got = float(flat[bad][0])
+        raise ValueError(f"V1 must be finite and > 0 (m/s); got {got!r}"
+                         + (" (at V1 = 0 no summit is ever touched and e_s is undefined)" if got == 0 else ""))
     return flat, v.shape
 
 

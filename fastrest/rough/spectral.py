@@ -23,6 +23,7 @@ summits of the same map: docs/rough-spectral.md.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,8 +32,10 @@ import numpy as np
 from .._validation import ValidityWarning, real_scalar, warn
 from .heights import GreenwoodWilliamson
 from .surface import RoughSurface
+from .topography import Topography, load_topography
 
-__all__ = ["SpectralMoments", "SpectralGW", "AnisotropyWarning", "spectral_moments", "gw_from_moments",
+__all__ = ["SpectralMoments", "SpectralGW", "AnisotropyWarning", "MAX_SUMMITS_PER_PIXEL", "spectral_moments",
+           "gw_from_moments",
            "spectral_surface", "ALPHA_MIN", "ANISOTROPY_TOL", "METHODS"]
 
 #: Smallest bandwidth parameter accepted: every isotropic surface has alpha >= 3/2 (its profile
@@ -42,6 +45,9 @@ ALPHA_MIN = 1.5
 #: Relative difference of the moments along the two axes above which a map is called anisotropic
 #: (:class:`AnisotropyWarning`): abs(m_x - m_y) / ((m_x + m_y)/2) > 0.2 for m2 or m4.
 ANISOTROPY_TOL = 0.2
+#: Most summits per pixel a map can hold: strict 8-neighbour maxima are never neighbours, so at
+#: most one in each 2 x 2 block.
+MAX_SUMMITS_PER_PIXEL = 0.25
 #: How the moments are computed: "grid" (central differences, the default) or "fft" (spectral).
 METHODS = ("grid", "fft")
 
@@ -149,11 +155,24 @@ class SpectralGW:
         return self.eta * self.A_n
 
 
-def _check_topography(t: Any) -> tuple[np.ndarray, float, float, bool]:
-    """(heights, dx, dy, periodic) of a Topography (duck-typed: heights, dx, dy, periodic)."""
+def _as_topography(t: Any) -> Topography:
+    """A :class:`~fastrest.rough.Topography`: ``t`` itself, what :func:`load_topography` reads from
+    a path or a SurfaceTopography object, or an object with heights, dx, dy and periodic checked by
+    the Topography constructor."""
+    if isinstance(t, Topography):
+        return t
+    if isinstance(t, (str, os.PathLike)) or (hasattr(t, "nb_grid_pts") and hasattr(t, "dim")):
+        return load_topography(t)
     if isinstance(t, (np.ndarray, list, tuple)) or not all(hasattr(t, a) for a in ("heights", "dx", "dy", "periodic")):
-        raise TypeError("topography must be a fastrest.rough.Topography (see load_topography), with heights (m), "
-                        f"dx, dy (m) and periodic; got {type(t).__name__}")
+        raise TypeError("topography must be a fastrest.rough.Topography (see load_topography), a file path, a "
+                        "SurfaceTopography topography, or an object with heights (m), dx, dy (m) and periodic; "
+                        f"got {type(t).__name__}")
+    return Topography(t.heights, t.dx, t.dy, t.periodic, type(t).__name__)
+
+
+def _check_topography(t: Any) -> tuple[np.ndarray, float, float, bool]:
+    """(heights, dx, dy, periodic) of a map (:func:`_as_topography`)."""
+    t = _as_topography(t)
     z = np.asarray(t.heights, dtype=np.float64)
     if z.ndim != 2 or min(z.shape) < 3:
         raise ValueError(f"the height map must be 2D with at least 3 points along each axis; got shape {z.shape}")
@@ -337,8 +356,10 @@ def spectral_surface(topography: Any, material: Any, *, method: str = "grid", A_
 
     Parameters
     ----------
-    topography : fastrest.rough.topography.Topography
-        The height map (m) (:func:`~fastrest.rough.topography.load_topography`).
+    topography : Topography, str, os.PathLike or SurfaceTopography topography
+        The height map (m): a :class:`~fastrest.rough.Topography`, or what
+        :func:`~fastrest.rough.load_topography` reads (read with its defaults), or an object with
+        ``heights`` (m), ``dx``, ``dy`` (m) and ``periodic`` (checked as a Topography).
     material : fastrest.Material
         The surface's material (the flat is rigid).
     method : {"grid", "fft"}, optional
@@ -357,7 +378,9 @@ def spectral_surface(topography: Any, material: Any, *, method: str = "grid", A_
     Raises
     ------
     TypeError, ValueError
-        As :func:`spectral_moments`, :func:`gw_from_moments` and :class:`RoughSurface`.
+        As :func:`spectral_moments`, :func:`gw_from_moments` and :class:`RoughSurface`; a map that
+        does not vary along one axis (no summits); a map too small or coarse for the model:
+        Nayak's density above :data:`MAX_SUMMITS_PER_PIXEL` summits per pixel.
 
     Warns
     -----
@@ -381,9 +404,16 @@ def spectral_surface(topography: Any, material: Any, *, method: str = "grid", A_
     >>> s.kind
     'statistical'
     """
-    m = spectral_moments(topography, method=method)
-    if A_n is None:
-        z, dx, dy, _ = _check_topography(topography)
-        A_n = z.shape[0] * dx * z.shape[1] * dy
-    p = gw_from_moments(m.m0, m.m2, m.m4, A_n)
+    t = _as_topography(topography)
+    m = spectral_moments(t, method=method)
+    for name, v in (("m2_x", m.m2_x), ("m2_y", m.m2_y), ("m4_x", m.m4_x), ("m4_y", m.m4_y)):
+        if not v > 0.0:
+            raise ValueError(f"{name} = {v!r}: the map does not vary along {'axis 0 (x)' if name.endswith('x') else 'axis 1 (y)'}, "
+                             "so it has no summits; Nayak's and McCool's formulas are for isotropic areal surfaces")
+    p = gw_from_moments(m.m0, m.m2, m.m4, t.area if A_n is None else A_n)
+    per_pixel = p.eta * t.dx * t.dy
+    if per_pixel > MAX_SUMMITS_PER_PIXEL:
+        raise ValueError(f"Nayak's summit density eta = {p.eta:.6g} 1/m^2 gives {per_pixel:.3g} summits per pixel of "
+                         f"{t.shape[0]} x {t.shape[1]}, more than the {MAX_SUMMITS_PER_PIXEL} a grid can hold (strict "
+                         "maxima are never neighbours): the map is too small or too coarse for the spectral model")
     return RoughSurface(material, p.R, gw=p.gw, et_ratio=et_ratio, loading=loading)

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from .._validation import as_float_array, check_bool
+from .surface import RoughSurface
 from .topography import Topography, load_topography
 
 __all__ = ["find_summits", "topography_summits", "from_topography", "TopographySummits"]
@@ -181,20 +182,21 @@ class TopographySummits:
                 "n_curvature_left_out": self.n_curvature_left_out, "n_summits": self.n_summits}
 
 
-def _as_topography(topography, detrend, cutoff, unit, physical_size):
+def _as_topography(topography, detrend, cutoff, unit, physical_size, periodic):
     if isinstance(topography, Topography):
         given = {k: v for k, v in (("detrend", detrend), ("cutoff", cutoff), ("unit", unit),
-                                   ("physical_size", physical_size)) if v is not None}
+                                   ("physical_size", physical_size), ("periodic", periodic)) if v is not None}
         if given:
             raise ValueError(f"{', '.join(given)}: options for reading a map; this Topography is already "
                              "read (give them to load_topography, or pass the file)")
         return topography
-    return load_topography(topography, detrend="height" if detrend is None else detrend, cutoff=cutoff,
-                           unit=unit, physical_size=physical_size)
+    return load_topography(topography, detrend=detrend, cutoff=cutoff,
+                           unit=unit, physical_size=physical_size, periodic=periodic)
 
 
 def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: float | None = None,
-            unit: str | None = None, physical_size: tuple[float, float] | None = None) -> TopographySummits:
+                       unit: str | None = None, physical_size: tuple[float, float] | None = None,
+                       periodic: bool | None = None) -> TopographySummits:
     """The summits of a height map with their heights and radii of curvature.
 
     Parameters
@@ -202,9 +204,9 @@ def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: f
     topography : Topography, str, os.PathLike or SurfaceTopography topography
         A map from :func:`~fastrest.rough.load_topography`, or what it reads (then read with the
         options below).
-    detrend, cutoff, unit, physical_size
+    detrend, cutoff, unit, physical_size, periodic
         :func:`~fastrest.rough.load_topography`'s options, for a map still to be read (a ValueError
-        with a :class:`Topography`); ``detrend`` None means "height".
+        with a :class:`Topography`); ``detrend`` None: "mean" for a periodic map, "height" otherwise.
 
     Returns
     -------
@@ -227,7 +229,7 @@ def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: f
     >>> s.i, s.j, s.heights, s.radii   # kappa = (2e-7/1e-12 + 2e-7/4e-12)/2
     (array([2]), array([2]), array([1.e-07]), array([8.e-06]))
     """
-    t = _as_topography(topography, detrend, cutoff, unit, physical_size)
+    t = _as_topography(topography, detrend, cutoff, unit, physical_size, periodic)
     h = t.heights
     i, j = find_summits(h, t.periodic)
     kappa = _curvature(h, i, j, t.dx, t.dy)
@@ -242,9 +244,13 @@ def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: f
         raise ValueError(f"no summit on {t.source} ({nx} x {ny} pixels, "
                          f"{'periodic' if t.periodic else 'non-periodic: border pixels excluded'}): no pixel "
                          f"is strictly higher than its 8 neighbours{' with a finite curvature' if n_found else ''}"
-                         " (a plane, a bowl or a plateau)")
+                         " (a plane, a bowl, a plateau, or a top shared by pixels of equal height: "
+                         "ties to the last bit count as equal)")
+    arrays = [h[i, j].copy(), np.array(r, dtype=np.float64), i, j]
+    for a in arrays:
+        a.setflags(write=False)  # the record is frozen: its arrays too
     return TopographySummits(
-        heights=h[i, j].copy(), radii=np.ascontiguousarray(r), i=i, j=j, n_pixels=nx * ny,
+        heights=arrays[0], radii=arrays[1], i=arrays[2], j=arrays[3], n_pixels=nx * ny,
         n_border=0 if t.periodic else 2 * nx + 2 * ny - 4, n_found=n_found,
         n_curvature_left_out=n_found - int(i.size), dx=t.dx, dy=t.dy, periodic=t.periodic, area=t.area,
         source=t.source)
@@ -252,7 +258,7 @@ def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: f
 
 def from_topography(topography: Any, material: Any, *, detrend: str | None = None, cutoff: float | None = None,
                     unit: str | None = None, physical_size: tuple[float, float] | None = None,
-                    et_ratio: float | None = None, loading: Any = None) -> Any:
+                    periodic: bool | None = None, et_ratio: float | None = None, loading: Any = None) -> Any:
     """The rough surface of a measured map's summits: :func:`topography_summits`, then explicit
     :class:`~fastrest.rough.RoughSurface` ``(material, heights=z, radii=R)``.
 
@@ -262,9 +268,9 @@ def from_topography(topography: Any, material: Any, *, detrend: str | None = Non
         The map (m), as in :func:`topography_summits`.
     material : fastrest.Material
         The surface's material (the flat is rigid).
-    detrend, cutoff, unit, physical_size
-        Reading options (:func:`~fastrest.rough.load_topography`; defaults: "height", no filter, from
-        the file), for a map still to be read.
+    detrend, cutoff, unit, physical_size, periodic
+        Reading options (:func:`~fastrest.rough.load_topography`; defaults: "mean" for a periodic
+        map and "height" otherwise, no filter, from the file), for a map still to be read.
     et_ratio, loading
         As :class:`~fastrest.rough.RoughSurface`.
 
@@ -291,8 +297,8 @@ def from_topography(topography: Any, material: Any, *, detrend: str | None = Non
     >>> s.topography_summits.n_summits, float(s.radii[0])
     (1, 5e-06)
     """
-    from .surface import RoughSurface
-    found = topography_summits(topography, detrend=detrend, cutoff=cutoff, unit=unit, physical_size=physical_size)
+    found = topography_summits(topography, detrend=detrend, cutoff=cutoff, unit=unit, physical_size=physical_size,
+                               periodic=periodic)
     surface = RoughSurface(material, heights=found.heights, radii=found.radii, et_ratio=et_ratio, loading=loading)
     setattr(surface, "topography_summits", found)  # the map's record travels with its surface
     return surface

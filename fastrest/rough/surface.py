@@ -225,6 +225,7 @@ class RoughSurface:
             except ValueError as exc:
                 raise ValueError(f"radii[{k}] = {float(R[k])!r} m: {exc}") from None
         R_ref = float(R[int(z.argmax())])
+        R.setflags(write=False)  # .radii: the surface computes with these (a copy of the input)
         if np.all(R == R_ref):
             return z, R_ref
         self._order = np.argsort(-z, kind="stable")  # the tallest (z.argmax(), the first) leads
@@ -253,6 +254,7 @@ class RoughSurface:
 
     def _init_explicit(self, heights):
         z = self._heights(heights)
+        z.setflags(write=False)  # .heights: the surface computes with these (a copy of the input)
         self.kind, self.heights, self.gw = "explicit", z, None
         self.z_top = float(z.max())
         with np.errstate(over="ignore", invalid="ignore"):

@@ -9,6 +9,8 @@ over as a read-only float64 array. SurfaceTopography is imported here only when 
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import math
 import os
 import warnings
@@ -19,8 +21,11 @@ import numpy as np
 
 from .._validation import as_float_array, check_bool, real_scalar
 
-__all__ = ["Topography", "load_topography", "DETREND_MODES", "BYTES_PER_PIXEL", "available_memory"]
+__all__ = ["Topography", "load_topography", "DETREND_MODES", "BYTES_PER_PIXEL", "MAX_SPACING", "available_memory"]
 
+#: Largest pixel spacing (m) of a :class:`Topography`: a metre-sized pixel is no asperity map (and
+#: second differences over much larger spacings would overflow).
+MAX_SPACING = 1.0
 #: detrend= values and the SurfaceTopography ``detrend_mode`` each one runs (None: nothing done).
 DETREND_MODES = {"height": "height", "mean": "mean", "slope": "slope", "curvature": "curvature",
                  "none": None}
@@ -55,7 +60,7 @@ class Topography:
     ------
     TypeError, ValueError
         Built directly (not by :func:`load_topography`): heights not a finite 2-D real array, dx or
-        dy not finite and > 0, periodic not a bool, source not a str. Heights are stored as a
+        dy not in (0, 1] m, periodic not a bool, source not a str. Heights are stored as a
         read-only C-contiguous float64 copy unless they already are one.
 
     Examples
@@ -84,8 +89,8 @@ class Topography:
             raise ValueError("heights must be finite (m): fill or crop undefined pixels first")
         dx, dy = real_scalar(self.dx, "dx"), real_scalar(self.dy, "dy")
         for name, v in (("dx", dx), ("dy", dy)):
-            if not (math.isfinite(v) and v > 0):
-                raise ValueError(f"{name} must be finite and > 0 (m, pixel spacing); got {v!r}")
+            if not (math.isfinite(v) and 0 < v <= MAX_SPACING):
+                raise ValueError(f"{name} must be in (0, {MAX_SPACING:g}] (m, pixel spacing); got {v!r}")
         if not isinstance(self.source, str):
             raise TypeError(f"source must be a str; got {type(self.source).__name__}")
         object.__setattr__(self, "heights", h)
@@ -154,9 +159,11 @@ def _import_st():
 
 
 def _check_options(detrend, cutoff, unit, physical_size, periodic):
-    if not isinstance(detrend, str):
-        raise TypeError(f"detrend must be a str, one of {sorted(DETREND_MODES)}; got {type(detrend).__name__}")
-    if detrend not in DETREND_MODES:
+    if detrend is None:
+        pass
+    elif not isinstance(detrend, str):
+        raise TypeError(f"detrend must be None or a str, one of {sorted(DETREND_MODES)}; got {type(detrend).__name__}")
+    elif detrend not in DETREND_MODES:
         raise ValueError(f"detrend = {detrend!r} is unknown: use one of {sorted(DETREND_MODES)}")
     if cutoff is not None:
         cutoff = real_scalar(cutoff, "cutoff")
@@ -207,10 +214,25 @@ def _reason(exc):
     return f"{type(exc).__name__}: {text if len(text) <= 300 else text[:297] + '...'}"
 
 
+@contextlib.contextmanager
+def _quiet():
+    """SurfaceTopography's readers print what they try (raw bytes of a file they cannot read) and
+    scipy's NetCDF reader warns on close: neither is the user's business; errors are reported."""
+    with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()), \
+            contextlib.redirect_stderr(io.StringIO()):
+        warnings.filterwarnings("ignore", "Cannot close a netcdf_file", RuntimeWarning)
+        yield
+
+
 def _read_file(path, unit, physical_size, periodic, cutoff, open_topography, factor):
     what = f"file {path!r}"
+    if not os.path.exists(path):
+        raise ValueError(f"{what} does not exist")
+    if os.path.isdir(path):
+        raise ValueError(f"{what} is a directory, not a topography file")
     try:
-        reader = open_topography(path)
+        with _quiet():
+            reader = open_topography(path)
         ch = reader.channels[reader.default_channel.index] if hasattr(reader, "default_channel") \
             else reader.channels[0]
     except Exception as exc:  # SurfaceTopography's reasons vary by format
@@ -232,7 +254,8 @@ def _read_file(path, unit, physical_size, periodic, cutoff, open_topography, fac
     if periodic is not None:
         kw["periodic"] = bool(periodic)
     try:
-        return reader.topography(**kw), what
+        with _quiet():
+            return reader.topography(**kw), what
     except Exception as exc:
         raise ValueError(f"cannot read {what} as a topography: {_reason(exc)}") from None
 
@@ -286,7 +309,7 @@ def _lowpass_st(t, cutoff, STTopography):
     return np.asarray(per.shortcut(cutoff_wavelength=cutoff).heights())[:nx, :ny]
 
 
-def load_topography(source: Any, *, detrend: str = "height", cutoff: float | None = None,
+def load_topography(source: Any, *, detrend: str | None = None, cutoff: float | None = None,
                     unit: str | None = None, physical_size: tuple[float, float] | None = None,
                     periodic: bool | None = None) -> Topography:
     """Read a 2-D height map, check it, convert it to metres, detrend and (optionally) low-pass it.
@@ -296,12 +319,13 @@ def load_topography(source: Any, *, detrend: str = "height", cutoff: float | Non
     source : str, os.PathLike or SurfaceTopography topography
         A file SurfaceTopography's ``open_topography`` reads (ISO 25178 ``.x3p``, NetCDF, Digital
         Instruments, Gwyddion, text matrices, ...), or a 2-D uniform SurfaceTopography topography.
-    detrend : {"height", "mean", "slope", "curvature", "none"}
-        Trend removed with SurfaceTopography's ``detrend(detrend_mode=...)``: "height" (default)
-        the plane of least rms height ("rms-tilt"), "mean" the mean height only, "slope" the plane
-        of least rms slope, "curvature" the quadratic of least rms height, "none" nothing.
-        SurfaceTopography keeps a periodic map periodic only when a constant is removed: use
-        "mean" (or "none") for periodic maps, otherwise the result is not periodic.
+    detrend : {None, "height", "mean", "slope", "curvature", "none"}
+        Trend removed with SurfaceTopography's ``detrend(detrend_mode=...)``: "height" the plane
+        of least rms height ("rms-tilt"), "mean" the mean height only, "slope" the plane of least
+        rms slope, "curvature" the quadratic of least rms height, "none" nothing. Default None:
+        "mean" for a periodic map (a period has no tilt to remove), "height" otherwise (a measured
+        map's tilt). SurfaceTopography keeps a periodic map periodic only when a constant is
+        removed: any other mode on a periodic map returns a non-periodic one, with a UserWarning.
     cutoff : float, optional
         Short-wavelength cutoff lambda_c (m), > 0; default None: no filter. When given, every
         Fourier component of wavevector ``|q| > 2 pi / lambda_c`` is set to zero
@@ -369,9 +393,16 @@ def load_topography(source: Any, *, detrend: str = "height", cutoff: float | Non
         _check_shape(what, t.dim, isinstance(t, Uniform), t.nb_grid_pts, None)
     _check_defined(t.heights(), what)
     t = t.to_unit("m")
+    if detrend is None:
+        detrend = "mean" if t.is_periodic else "height"
     mode = DETREND_MODES[detrend]
     if mode is not None:
+        was_periodic = bool(t.is_periodic)
         t = t.detrend(detrend_mode=mode)
+        if was_periodic and not t.is_periodic:
+            warnings.warn(f"detrend = {detrend!r} fits a trend to a periodic map, which makes it non-periodic "
+                          "(SurfaceTopography's rule): its edges are no longer neighbours; use detrend='mean' "
+                          "(the default for periodic maps) to keep it periodic", UserWarning, stacklevel=2)
     h = _lowpass(t, cutoff, STTopography) if cutoff is not None else np.asarray(t.heights())
     h = np.array(h, dtype=np.float64, order="C", copy=True)
     if not np.all(np.isfinite(h)):
