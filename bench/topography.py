@@ -116,10 +116,10 @@ def report(n, repeats, topo, found, r, res, m, load0, load1):
           "The x3p row adds file reading (SurfaceTopography's reader) to the object load; the "
           "end-to-end row starts from the object.", "",
           "## Where the time goes", "",
-          "- Loading is the largest stage, and it is SurfaceTopography's: the default detrend "
-          "(\"height\", the plane of least rms height) is `numpy.linalg.lstsq` on an (nx ny) x 3 design "
-          "matrix, most of the object load; `detrend=\"mean\"` skips it. Reading the .x3p file adds "
-          "SurfaceTopography's reader (unzip, heights stored column-major) on top.",
+          "- Reading the .x3p file is the largest stage, and it is SurfaceTopography's: its reader (unzip, "
+          "heights stored column-major), and the default detrend of a map the file does not call periodic "
+          "(\"height\", the plane of least rms height: `numpy.linalg.lstsq` on an (nx ny) x 3 design matrix). "
+          "The object is periodic, so its default detrend removes the mean only.",
           "- Summits (8 comparisons over the map) and their curvature are vectorised NumPy, tens of ms.",
           "- The impact is cheap once summits are known: only the tallest summits are ever in contact; "
           "the first call of `impact` compiles the radii kernels (Numba cache cold) and builds the "
