@@ -145,6 +145,7 @@ def test_attributes_params_pickle_repr():
     p = s.params()
     assert "R_a" not in p and np.array_equal(p["radii"], R)
     t = pickle.loads(pickle.dumps(s))
+    assert not t.heights.flags.writeable and not t.radii.flags.writeable
     V = np.array([0.01, 0.1])
     for other in (t, rough.RoughSurface(**p)):
         assert np.array_equal(other.impact(V, 1e-3).e, s.impact(V, 1e-3).e)

@@ -243,6 +243,12 @@ class RoughSurface:
             return np.full(self.heights.size, self.R_a)
         return cast(NDArray[np.float64], self._radii)
 
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        for a in (state.get("heights"), state.get("_radii")):  # read-only again after unpickling
+            if isinstance(a, np.ndarray):
+                a.setflags(write=False)
+
     def _radius_ratios(self):
         """Radii over the reference radius, as the explicit kernels take them (ones for one radius)."""
         return explicit.radius_ratios(self._r, self._h.size)
