@@ -76,12 +76,13 @@ def _rough_kernel_function(row):
 
 
 class _RoughSums:
-    """The per-summit sums of one surface on the device: heights h and radius ratios r copied once,
-    a partial-sum array."""
+    """The per-summit sums of one surface on the device: heights h and radius ratios r (ones for one
+    radius) copied once, a partial-sum array; the host keeps h and r (None for one radius) for
+    :func:`~fastrest.rough.explicit.x_reaching` and :func:`~fastrest.rough.explicit.largest_w`."""
 
     def __init__(self, h, r, descending):
         self.h = cuda.to_device(np.ascontiguousarray(h))
-        self.r = cuda.to_device(np.ascontiguousarray(r))
+        self.r = cuda.to_device(np.ascontiguousarray(_explicit.radius_ratios(r, h.size)))
         self.h_host, self.r_host, self.descending = h, r, bool(descending)
         n = h.size
         self.blocks = max(1, min(ROUGH_BLOCKS, (n + _ROUGH_THREADS - 1) // _ROUGH_THREADS))
@@ -188,7 +189,7 @@ def rough_impact(surface: Any, V1: Any, M: float, unloading: str = "jcg", *, ext
                         "sums run on the GPU, the speeds stay on the host (copy_to_host())")
     sums = _ROUGH_DEVICE.get(surface)
     if sums is None:
-        sums = _ROUGH_DEVICE[surface] = _RoughSums(surface._h, surface._radius_ratios(), surface._descending)
+        sums = _ROUGH_DEVICE[surface] = _RoughSums(surface._h, surface._r, surface._descending)
 
     def solve(e_hi, e_lo, unloading, extrapolate, M):
         x0, d0 = np.empty(e_hi.size), np.empty(e_hi.size)

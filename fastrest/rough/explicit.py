@@ -138,22 +138,26 @@ def _block_sums(row, law, summits, x, delta):
 # is (5/2) P*(w*) r^2 (w* = (h + x)/r), so the Newton slope stays the weighted force sum.
 
 @jit(inline=True)
-def _hertz_row(law, w, d, r, onset):
-    """(energy term, its magnitude, P*, counted from 1) of a Hertzian summit of radius ratio r,
-    in the reference summit's units (``law`` unused)."""
-    f, p, k = hertz_terms(w, d, onset)
+def _energy_row(f, p, k, r):
+    """(energy term, its magnitude, P*, counted from 1) of a summit of radius ratio r whose own
+    terms are (f, p, k), in the reference summit's units."""
     r2 = r * r
     r3 = r2 * r
     return r3 * f, r3 * abs(f), r2 * p, r3 * k
 
 
 @jit(inline=True)
+def _hertz_row(law, w, d, r, onset):
+    """:func:`_energy_row` of a Hertzian summit (``law`` unused)."""
+    f, p, k = hertz_terms(w, d, onset)
+    return _energy_row(f, p, k, r)
+
+
+@jit(inline=True)
 def _jg_row(law, w, d, r, onset):
     """:func:`_hertz_row` under the loading law of ``law``, the forward table."""
     f, p, k = jg_terms(law, w, d, onset)
-    r2 = r * r
-    r3 = r2 * r
-    return r3 * f, r3 * abs(f), r2 * p, r3 * k
+    return _energy_row(f, p, k, r)
 
 
 @jit(inline=True)
@@ -188,9 +192,9 @@ def _impact_sums(data, summits, x, delta):
 def x_reaching(h, r, w):
     """The reference summit's w* (-) at which the first summit reaches w* = ``w``: min_i (w r_i - h_i)
     (``w`` itself for one radius, as the tallest summit, h = 0, leads)."""
-    x = np.inf
     if w == np.inf or _one_radius(r):  # one radius: min_i (w - h_i) = w, as max h_i = 0
         return w
+    x = np.inf
     for i in range(h.size):
         x = min(x, w * _ratio(r, i) - h[i])
     return x

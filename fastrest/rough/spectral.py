@@ -32,7 +32,7 @@ import numpy as np
 from .._validation import ValidityWarning, real_scalar, warn
 from .heights import GreenwoodWilliamson
 from .surface import RoughSurface
-from .topography import Topography, load_topography
+from .topography import Topography, as_topography
 
 __all__ = ["SpectralMoments", "SpectralGW", "AnisotropyWarning", "MAX_SUMMITS_PER_PIXEL", "spectral_moments",
            "gw_from_moments",
@@ -159,10 +159,8 @@ def _as_topography(t: Any) -> Topography:
     """A :class:`~fastrest.rough.Topography`: ``t`` itself, what :func:`load_topography` reads from
     a path or a SurfaceTopography object, or an object with heights, dx, dy and periodic checked by
     the Topography constructor."""
-    if isinstance(t, Topography):
-        return t
-    if isinstance(t, (str, os.PathLike)) or (hasattr(t, "nb_grid_pts") and hasattr(t, "dim")):
-        return load_topography(t)
+    if isinstance(t, (Topography, str, os.PathLike)) or (hasattr(t, "nb_grid_pts") and hasattr(t, "dim")):
+        return as_topography(t)
     if isinstance(t, (np.ndarray, list, tuple)) or not all(hasattr(t, a) for a in ("heights", "dx", "dy", "periodic")):
         raise TypeError("topography must be a fastrest.rough.Topography (see load_topography), a file path, a "
                         "SurfaceTopography topography, or an object with heights (m), dx, dy (m) and periodic; "
@@ -171,17 +169,13 @@ def _as_topography(t: Any) -> Topography:
 
 
 def _check_topography(t: Any) -> tuple[np.ndarray, float, float, bool]:
-    """(heights, dx, dy, periodic) of a map (:func:`_as_topography`)."""
+    """(heights, dx, dy, periodic) of a map (:func:`_as_topography`, whose Topography checks the
+    heights (finite, 2-D) and the spacings), with at least 3 pixels along each axis."""
     t = _as_topography(t)
-    z = np.asarray(t.heights, dtype=np.float64)
-    if z.ndim != 2 or min(z.shape) < 3:
+    z = t.heights
+    if min(z.shape) < 3:
         raise ValueError(f"the height map must be 2D with at least 3 points along each axis; got shape {z.shape}")
-    if not np.all(np.isfinite(z)):
-        raise ValueError("the height map must be finite (m)")
-    dx, dy = (real_scalar(v, n) for v, n in ((t.dx, "dx"), (t.dy, "dy")))
-    if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
-        raise ValueError(f"pixel spacings must be finite and > 0 (m); got dx = {dx!r}, dy = {dy!r}")
-    return z, dx, dy, bool(t.periodic)
+    return z, t.dx, t.dy, t.periodic
 
 
 def _grid_axis(z, h, axis, periodic):

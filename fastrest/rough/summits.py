@@ -21,7 +21,7 @@ import numpy as np
 
 from .._validation import as_float_array, check_bool
 from .surface import RoughSurface
-from .topography import Topography, load_topography
+from .topography import Topography, as_topography
 
 __all__ = ["find_summits", "topography_summits", "from_topography", "TopographySummits"]
 
@@ -182,18 +182,6 @@ class TopographySummits:
                 "n_curvature_left_out": self.n_curvature_left_out, "n_summits": self.n_summits}
 
 
-def _as_topography(topography, detrend, cutoff, unit, physical_size, periodic):
-    if isinstance(topography, Topography):
-        given = {k: v for k, v in (("detrend", detrend), ("cutoff", cutoff), ("unit", unit),
-                                   ("physical_size", physical_size), ("periodic", periodic)) if v is not None}
-        if given:
-            raise ValueError(f"{', '.join(given)}: options for reading a map; this Topography is already "
-                             "read (give them to load_topography, or pass the file)")
-        return topography
-    return load_topography(topography, detrend=detrend, cutoff=cutoff,
-                           unit=unit, physical_size=physical_size, periodic=periodic)
-
-
 def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: float | None = None,
                        unit: str | None = None, physical_size: tuple[float, float] | None = None,
                        periodic: bool | None = None) -> TopographySummits:
@@ -229,7 +217,8 @@ def topography_summits(topography: Any, *, detrend: str | None = None, cutoff: f
     >>> s.i, s.j, s.heights, s.radii   # kappa = (2e-7/1e-12 + 2e-7/4e-12)/2
     (array([2]), array([2]), array([1.e-07]), array([8.e-06]))
     """
-    t = _as_topography(topography, detrend, cutoff, unit, physical_size, periodic)
+    t = as_topography(topography, detrend=detrend, cutoff=cutoff, unit=unit, physical_size=physical_size,
+                      periodic=periodic)
     h = t.heights
     i, j = find_summits(h, t.periodic)
     kappa = _curvature(h, i, j, t.dx, t.dy)

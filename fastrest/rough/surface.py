@@ -164,7 +164,8 @@ class RoughSurface:
             if heights is None:
                 raise ValueError("radii= needs explicit summits (heights=); a statistical surface (gw=) has "
                                  "one radius, R_a")
-            heights, R_a = self._check_radii(material, heights, radii)
+            heights = self._heights(heights)
+            R_a = self._check_radii(material, heights, radii)
         elif R_a is None:
             raise TypeError("give R_a (m, the summit radius) or radii= (m, each summit's): neither was given")
         self.R_a = float(check_finite_positive(real_scalar(R_a, "R_a"), "R_a", "(m, summit radius)"))
@@ -178,7 +179,7 @@ class RoughSurface:
         self.omega_c, self.P_c, self.U_c = ip.omega_c, ip.P_c, ip.U_c
         self._tables = ForwardCache(self.eps_y, self.nu, self.et_ratio, self.law.name)
         if heights is not None:
-            self._init_explicit(heights)
+            self._init_explicit(heights if radii is not None else self._heights(heights))  # checked once
         else:
             self._init_statistical(gw)
 
@@ -206,12 +207,11 @@ class RoughSurface:
             raise ValueError("heights must be finite (m)")
         return z
 
-    def _check_radii(self, material, heights, radii):
-        """(heights, the reference radius R_a) of a surface with ``radii``. Unless every radius is
-        the same (then the surface is one of R_a, bit for bit), sets ``_r``, the radii over the
-        reference radius (the tallest summit's, so that its r is exactly 1), in the kernels' order:
-        tallest first (``_order``), so that the sums stop at the first summit out of contact."""
-        z = self._heights(heights)
+    def _check_radii(self, material, z, radii):
+        """The reference radius R_a of a surface with heights ``z`` (checked) and ``radii``. Unless
+        every radius is the same (then the surface is one of R_a, bit for bit), sets ``_radii`` and
+        ``_r``, the radii over the reference radius (the tallest summit's, so that its r is exactly
+        1), put in the kernels' order by :meth:`_init_explicit`."""
         R = np.array(as_float_array(radii, "radii"), dtype=np.float64).ravel()
         if R.size != z.size:
             raise ValueError(f"radii must give one radius (m) per summit: {z.size} heights, {R.size} radii")
@@ -226,12 +226,9 @@ class RoughSurface:
                 raise ValueError(f"radii[{k}] = {float(R[k])!r} m: {exc}") from None
         R_ref = float(R[int(z.argmax())])
         R.setflags(write=False)  # .radii: the surface computes with these (a copy of the input)
-        if np.all(R == R_ref):
-            return z, R_ref
-        self._order = np.argsort(-z, kind="stable")  # the tallest (z.argmax(), the first) leads
-        self._r = np.ascontiguousarray((R / R_ref)[self._order])
-        self._radii = R
-        return z, R_ref
+        if not np.all(R == R_ref):
+            self._r, self._radii = R / R_ref, R
+        return R_ref
 
     @property
     def radii(self) -> NDArray[np.float64] | None:
@@ -249,17 +246,12 @@ class RoughSurface:
             if isinstance(a, np.ndarray):
                 a.setflags(write=False)
 
-    def _radius_ratios(self):
-        """Radii over the reference radius, as the explicit kernels take them (ones for one radius)."""
-        return explicit.radius_ratios(self._r, self._h.size)
-
     @property
     def _descending(self):
         """The kernels' heights are sorted tallest first (a surface with radii)."""
         return self._r is not None
 
-    def _init_explicit(self, heights):
-        z = self._heights(heights)
+    def _init_explicit(self, z):
         z.setflags(write=False)  # .heights: the surface computes with these (a copy of the input)
         self.kind, self.heights, self.gw = "explicit", z, None
         self.z_top = float(z.max())
@@ -271,7 +263,11 @@ class RoughSurface:
                              "deviation overflows")
         self.n_summits = z.size
         h = (z - self.z_top) / self.omega_c
-        self._h = np.ascontiguousarray(h if self._r is None else h[self._order])
+        if self._r is None:
+            self._h = np.ascontiguousarray(h)
+        else:  # tallest first (z.argmax(), the first, leads): the sums stop at the first summit out of contact
+            order = np.argsort(-z, kind="stable")
+            self._h, self._r = np.ascontiguousarray(h[order]), np.ascontiguousarray(self._r[order])
 
     def _init_statistical(self, gw):
         if isinstance(gw, dict):

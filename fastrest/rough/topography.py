@@ -309,6 +309,18 @@ def _lowpass_st(t, cutoff, STTopography):
     return np.asarray(per.shortcut(cutoff_wavelength=cutoff).heights())[:nx, :ny]
 
 
+def as_topography(source: Any, **options: Any) -> Topography:
+    """``source`` itself if it is a :class:`Topography` (then reading ``options`` given, not None,
+    are a ValueError), else :func:`load_topography` ``(source, **options)``."""
+    if isinstance(source, Topography):
+        given = [k for k, v in options.items() if v is not None]
+        if given:
+            raise ValueError(f"{', '.join(given)}: options for reading a map; this Topography is already "
+                             "read (give them to load_topography, or pass the file)")
+        return source
+    return load_topography(source, **options)
+
+
 def load_topography(source: Any, *, detrend: str | None = None, cutoff: float | None = None,
                     unit: str | None = None, physical_size: tuple[float, float] | None = None,
                     periodic: bool | None = None) -> Topography:
