@@ -189,7 +189,7 @@ def _one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9", style="pair_style jgm", atom
     (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9 Et 2e11"), "Et = 2e11 must be in [0, E = 200e9)"),
     (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9 Ex 2e9"), "expected keyword 'Et'"),
     (_one_pair(coeff="pair_coeff 1 2 200e9 0.3 1e9", types=2), "give each type's material"),
-    (_one_pair(types=2), "All pair coeffs are not set"),
+    (_one_pair(types=2), "no material for atom type 2 (pair_coeff 2 2 E nu Sy)"),
     (_one_pair(style="pair_style jgm unloading foo"), "unloading model 'foo' is not one of"),
     (_one_pair(style="pair_style jgm tangential mindlin -0.3"), "MU = -0.3 must be finite and >= 0"),
     (_one_pair(style="pair_style jgm tangential mindlin"), "needs the friction coefficient MU"),

@@ -20,7 +20,7 @@ def _cmd_build(args):
 def _cmd_law(args):
     from .laws import read_requests, write_laws
 
-    write_laws(args.out, read_requests(args.request), args.unloading)
+    write_laws(args.out, read_requests(args.request), args.unloading, args.pascal)
     return 0
 
 
@@ -45,5 +45,7 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argp
     pl.add_argument("--request", required=True, help="request file")
     pl.add_argument("--unloading", default="jcg", help="unloading model: jcg, etsion or brake (default jcg)")
     pl.add_argument("--out", required=True, help="output law file")
+    pl.add_argument("--pascal", type=float, default=1.0,
+                    help="the request's pressure unit in Pa (units si 1, cgs 0.1, micro 1e3, nano 1e6; default 1)")
     pl.set_defaults(func=_cmd_law)
     return p

@@ -73,6 +73,11 @@ def read_requests(path: str | os.PathLike[str]) -> list[Request]:
     return out
 
 
+def _in_pascal(body, pascal):
+    """(E, nu, Sy, Et) in pressure units of ``pascal`` Pa, in Pa."""
+    return (body[0] * pascal, body[1], body[2] * pascal, body[3] * pascal)
+
+
 def _impact(kind, a, b):
     one = Material(a[0], a[1], a[2], Et=a[3])
     two = Material(b[0], b[1], b[2], Et=b[3])
@@ -114,32 +119,40 @@ def _g_eff(a, b):
     return 1.0 / sum((2.0 - body[1]) * 2.0 * (1.0 + body[1]) / body[0] for body in (a, b))
 
 
-def law_bytes(requests: list[Request], unloading: str) -> bytes:
+def law_bytes(requests: list[Request], unloading: str, pascal: float = 1.0) -> bytes:
     """The law file of ``requests`` (:func:`read_requests`) with unloading model ``unloading``.
+
+    ``pascal`` is the simulation's pressure unit in Pa (LAMMPS ``units si`` 1, ``cgs`` 0.1,
+    ``micro`` 1e3, ``nano`` 1e6): the materials are built in Pa (so that fastrest's messages give
+    Pa) and the critical force and G* written back in the simulation's unit.
 
     Raises
     ------
     ValueError
-        An unknown unloading model; a pair fastrest refuses (its message, prefixed by the label).
+        An unknown unloading model; ``pascal`` not finite and > 0; a pair fastrest refuses (its
+        message, prefixed by the label).
     """
     if unloading not in _unloading.NAMES:
         raise ValueError(f"unloading model {unloading!r} is not one of {', '.join(_unloading.NAMES)}")
+    if not (math.isfinite(pascal) and pascal > 0.0):
+        raise ValueError(f"pressure unit pascal = {pascal!r} Pa must be finite and > 0")
     parts = [np.array([len(requests)], dtype="<f8")]
     for kind, a, b, label in requests:
+        a, b = _in_pascal(a, pascal), _in_pascal(b, pascal)
         try:
             impact = _impact(kind, a, b)
             law = impact.contact_law(unloading)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"{label}: {exc}") from None
         rows = np.ascontiguousarray(law.data.law_rows, dtype="<f8")
-        head = [impact.omega_c, impact.P_c, float(law.data.w_max), float(rows.shape[0]),
-                math.sqrt(impact.A_c / math.pi), _g_eff(a, b)]
+        head = [impact.omega_c, impact.P_c / pascal, float(law.data.w_max), float(rows.shape[0]),
+                math.sqrt(impact.A_c / math.pi), _g_eff(a, b) / pascal]
         parts += [np.array(head, dtype="<f8"), rows.ravel(), area_rows(law).astype("<f8").ravel()]
     return MAGIC + np.concatenate(parts).tobytes()
 
 
-def write_laws(path: str | os.PathLike[str], requests: list[Request], unloading: str) -> str:
-    """Write the law file of ``requests`` atomically; return its path."""
+def write_laws(path: str | os.PathLike[str], requests: list[Request], unloading: str, pascal: float = 1.0) -> str:
+    """Write the law file of ``requests`` (pressure unit ``pascal`` Pa) atomically; return its path."""
     check_target(path, "--out", "the law file")
-    data = law_bytes(requests, unloading)
+    data = law_bytes(requests, unloading, pascal)
     return write_files({path: data}, "--out", "the law file")[0]

@@ -8,7 +8,11 @@
    vectors from one atom to the other are stored negated at the second. After a rebuild
    (post_neighbor) each neighbour pair takes its values from its local atom's partner list. The
    pair style's list is half and newton off, so every contact is on the rank of each of its atoms:
-   no ghost communication is needed. */
+   no ghost communication is needed. The partner lists grow as needed (no limit on contacts per
+   atom). Each atom also carries its share of the energy dissipated by its contacts that ended.
+
+   The fix's global restart record holds the pair style's model (its materials and options), so
+   that a run read back from a restart file can refuse another model for contacts that are open. */
 #ifndef FASTREST_FIX_JGM_HISTORY_H
 #define FASTREST_FIX_JGM_HISTORY_H
 
@@ -20,9 +24,6 @@ namespace LAMMPS_NS {
 
 class FixJGMHistory : public Fix {
  public:
-  //! Most contacts one atom may have (a LAMMPS error names the atom past it).
-  static constexpr int MAXPARTNER = 64;
-
   FixJGMHistory(class LAMMPS *, int, char **);
   ~FixJGMHistory() override;
   int setmask() override;
@@ -32,6 +33,8 @@ class FixJGMHistory : public Fix {
   void post_neighbor() override;
   void min_post_neighbor() override;
   void post_run() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
   void set_arrays(int) override;
@@ -46,18 +49,31 @@ class FixJGMHistory : public Fix {
   void set_list(class NeighList *l) { list = l; }
   //! The values of local atom i's neighbours, NVALUES each, in its neighbour-list order.
   double *values(int i) { return vals.data() + offset[i]; }
+  //! Open contacts local atom i carries (between a migration and the next rebuild).
+  int partner_count(int i) const { return static_cast<int>(partners[i].size() / (1 + nvalues)); }
+  //! Energy dissipated by local atom i's contacts that ended (its half of each).
+  double &ended(int i) { return ended_energy[i]; }
+
+  //! The model the pair style runs (written to restart files) and the one a restart file held
+  //! (empty: none read); see PairJGM::model_record.
+  std::vector<double> model, restored_model;
+  //! Set when histories were read from a restart file; the pair style checks them and clears it.
+  bool restored_rows;
+
   int nvalues;
   int flip_lo, flip_hi;    // values flip_lo .. flip_hi - 1 are vectors from atom i to j: negated for j
 
  private:
   class NeighList *list;
   std::vector<std::vector<double>> partners;
+  std::vector<double> ended_energy;
   std::vector<double> vals;
   std::vector<size_t> offset;
   bool current;    // vals hold the histories of the current list
 
   void to_atoms();
   void add_partner(int i, double tag, const double *v, bool flip);
+  void check_box();
 };
 
 }    // namespace LAMMPS_NS

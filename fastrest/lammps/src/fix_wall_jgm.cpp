@@ -3,6 +3,7 @@
 #include "pair_jgm.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
@@ -24,7 +25,8 @@ static const char *WHERE = "fix wall/jgm";
 // fix ID group wall/jgm zplane ZLO ZHI E nu Sy [Et value] [unloading jcg|etsion|brake]
 //     [tangential none|mindlin MU]
 FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), mu(-1.0), hist(nullptr), force_flag(0)
+    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), mu(-1.0), mu_given(false), restored(false),
+    hist(nullptr), force_flag(0)
 {
   if (narg < 9)
     error->all(FLERR, "fix wall/jgm: expected 'zplane ZLO ZHI E nu Sy [Et value] [unloading MODEL]', got {} arguments",
@@ -41,6 +43,7 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
   while (k < narg) {
     if (k + 1 >= narg) error->all(FLERR, "fix wall/jgm: keyword '{}' needs a value", arg[k]);
     if (std::strcmp(arg[k], "tangential") == 0) {
+      mu_given = true;
       if (std::strcmp(arg[k + 1], "none") == 0) {
         mu = -1.0;
       } else if (std::strcmp(arg[k + 1], "mindlin") == 0) {
@@ -67,6 +70,7 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
   size_vector = 2;
   global_freq = 1;
   extvector = 1;
+  restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
   maxexchange = NV;
@@ -91,12 +95,28 @@ void FixWallJGM::init()
   auto *pair = dynamic_cast<PairJGM *>(force->pair_match("jgm", 1));
   if (!pair) error->all(FLERR, "fix wall/jgm needs pair_style jgm (the particles' materials)");
   std::string model = unloading.empty() ? pair->unloading() : unloading;
+  if (!mu_given) mu = pair->friction();    // the pair style's tangential model, unless given here
+  if (!restored_wall.empty()) {
+    const std::vector<double> &o = restored_wall;
+    bool open = false;
+    for (int i = 0; i < atom->nlocal && !open; ++i)
+      for (int k = 0; k < NV; ++k) open = open || hist[i][k] != 0.0;
+    int any = 0, mine = open;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
+    if (any && (o[0] != wall.E || o[1] != wall.nu || o[2] != wall.Sy || o[3] != wall.Et ||
+                o[4] != FastrestJGM::unloading_index(model)))
+      error->all(FLERR, "fix wall/jgm: the restart file's open wall contacts are of a wall with E {:.17g} nu {:.17g} "
+                        "Sy {:.17g} Et {:.17g} and unloading {}; give the same wall (or continue from a data file, "
+                        "where contacts start anew)", o[0], o[1], o[2], o[3], static_cast<int>(o[4]));
+    restored_wall.clear();
+  }
   int n = atom->ntypes;
   std::vector<FastrestJGM::LawRequest> req;
   std::ostringstream key;
   key.precision(17);
   key << model;
   law_of.assign(n + 1, -1);
+  model_code = FastrestJGM::unloading_index(model);
   for (int t = 1; t <= n; ++t) {
     const FastrestJGM::Body *b = pair->material(t);
     if (!b) error->all(FLERR, "fix wall/jgm: no material for atom type {} (pair_coeff {} {} E nu Sy)", t, t, t);
@@ -105,12 +125,50 @@ void FixWallJGM::init()
     req.push_back({true, *b, wall, fmt::format("type_{}_on_wall_{}", t, id)});
   }
   if (key.str() != laws_key) {
-    FastrestJGM::request_laws(lmp, req, model, laws);
+    FastrestJGM::request_laws(lmp, req, model, FastrestJGM::pascal_per_unit(update->unit_style), laws);
     laws_key = key.str();
   }
 }
 
-void FixWallJGM::setup(int vflag) { post_force(vflag); }
+void FixWallJGM::setup(int vflag)
+{
+  if (restored) {    // every history read back is one its law can have written
+    restored = false;
+    for (int i = 0; i < atom->nlocal; ++i)
+      for (int side = 0; side < 2; ++side) {
+        const double *h = hist[i] + side * PER_WALL;
+        bool active = false;
+        for (int k = 0; k < PER_WALL; ++k) active = active || h[k] != 0.0;
+        if (!active) continue;
+        std::string why = FastrestJGM::row_problem(laws, law_of[atom->type[i]], h);
+        for (int k = FastrestJGM::STATE; k < PER_WALL && why.empty(); ++k)
+          if (!std::isfinite(h[k])) why = "a tangential displacement is not finite";
+        if (!why.empty())
+          error->one(FLERR, "fix wall/jgm: the restart file's contact of atom {} with the {} wall is no history of "
+                            "its law: {}", atom->tag[i], side == 0 ? "lower" : "upper", why);
+      }
+  }
+  post_force(vflag);
+}
+
+void FixWallJGM::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  double rec[6] = {5.0, wall.E, wall.nu, wall.Sy, wall.Et, static_cast<double>(model_code)};
+  int size = sizeof(rec);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(rec, sizeof(double), 6, fp);
+}
+
+void FixWallJGM::restart(char *buf)
+{
+  double rec[6];
+  std::memcpy(rec, buf, sizeof(rec));
+  bool ok = rec[0] == 5.0;
+  for (double v : rec) ok = ok && std::isfinite(v);
+  if (!ok) error->all(FLERR, "fix wall/jgm: the restart file's record of the wall is damaged");
+  restored_wall.assign(rec + 1, rec + 6);
+}
 
 void FixWallJGM::post_force(int)
 {
@@ -208,10 +266,18 @@ void FixWallJGM::unpack_restart(int nlocal, int nth)
 {
   double **extra = atom->extra;
   int m = 0;
-  for (int k = 0; k < nth; ++k) m += static_cast<int>(extra[nlocal][m]);
-  if (extra[nlocal][m] != NV + 1)
+  for (int k = 0; k < nth; ++k) {
+    double size = m < atom->nextra_store ? extra[nlocal][m] : -1.0;
+    if (!(size >= 1.0 && m + size <= atom->nextra_store))
+      error->one(FLERR, "fix wall/jgm: restart file holds a damaged record for atom {}", atom->tag[nlocal]);
+    m += static_cast<int>(size);
+  }
+  if (m + NV + 1 > atom->nextra_store || extra[nlocal][m] != NV + 1)
     error->one(FLERR, "fix wall/jgm: restart file holds a bad history for atom {}", atom->tag[nlocal]);
-  for (int k = 0; k < NV; ++k) hist[nlocal][k] = extra[nlocal][m + 1 + k];
+  for (int k = 0; k < NV; ++k) {
+    hist[nlocal][k] = extra[nlocal][m + 1 + k];
+    restored = restored || hist[nlocal][k] != 0.0;
+  }
 }
 
 int FixWallJGM::size_restart(int) { return NV + 1; }

@@ -20,6 +20,8 @@ class FixWallJGM : public Fix {
   void init() override;
   void setup(int) override;
   void post_force(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   double compute_vector(int) override;
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
@@ -40,9 +42,13 @@ class FixWallJGM : public Fix {
   FastrestJGM::Body wall;
   std::string unloading;
   double mu;    // tangential mindlin MU; < 0: tangential none
+  bool mu_given;    // tangential given here; else the pair style's
+  bool restored;    // histories read from a restart file, checked at the next set-up
+  std::vector<double> restored_wall;    // the wall's material in the restart file (empty: none)
   FastrestJGM::Laws laws;
   std::vector<int> law_of;    // per atom type
   std::string laws_key;
+  int model_code = 0;    // unloading model index of the laws
   double **hist;
   double wall_force[2], wall_force_all[2];
   int force_flag;

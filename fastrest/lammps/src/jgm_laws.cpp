@@ -2,6 +2,7 @@
 
 #include "comm.h"
 #include "error.h"
+#include "fastrest_law.h"
 #include "pointers.h"
 #include "utils.h"
 
@@ -25,6 +26,7 @@ namespace FastrestJGM {
 
 static const char MAGIC[8] = {'F', 'R', 'J', 'G', 'M', 'L', 'W', '2'};
 static const int ROW = 16;
+static const size_t MAX_LAWS = 4096;    // fastrest.lammps.laws's limit
 
 static std::string shell_quote(const std::string &s)
 {
@@ -114,9 +116,52 @@ Body read_body(LAMMPS *lmp, const std::string &where, const char *E, const char 
   return b;
 }
 
-void request_laws(LAMMPS *lmp, const std::vector<LawRequest> &requests, const std::string &unloading,
-                  Laws &out)
+double pascal_per_unit(const char *units)
 {
+  std::string u = units ? units : "";
+  if (u == "si") return 1.0;
+  if (u == "cgs") return 0.1;       // dyne/cm^2
+  if (u == "micro") return 1e3;     // picogram/(micrometer microsecond^2)
+  if (u == "nano") return 1e6;      // attogram/(nanometer nanosecond^2)
+  return 0.0;
+}
+
+int unloading_index(const std::string &model)
+{
+  if (model == "jcg") return 0;
+  if (model == "etsion") return 1;
+  if (model == "brake") return 2;
+  return -1;
+}
+
+std::string row_problem(const Laws &laws, int k, const double *state)
+{
+  if (k < 0 || k >= static_cast<int>(laws.law.size())) return "no law for the pair";
+  const Law &law = laws.law[k];
+  for (int m = 0; m < STATE; ++m)
+    if (!std::isfinite(state[m])) return "a value is not finite";
+  if (!(state[0] > 0.0 && state[0] <= law.w_end))
+    return fmt::format("w_max* = {:.17g} is not in (0, {:.17g}], the law's domain", state[0], law.w_end);
+  double fresh[STATE] = {0.0, 0.0, 0.0, 0.0};
+  fastrest_law_step(laws.rows.data(), law.first, law.last, law.w_end, fresh, state[0]);
+  // the same law and w_max give the same row; 1e-9 leaves room for another compiler's rounding
+  const char *names[STATE] = {"w_max*", "P*(w_max)", "w_res*", "delta"};
+  for (int m = 1; m < STATE; ++m) {
+    double scale = m == 1 ? std::fabs(fresh[m]) : std::max(1.0, state[0]);
+    if (!(std::fabs(state[m] - fresh[m]) <= 1e-9 * scale))
+      return fmt::format("{} = {:.17g} where the law gives {:.17g} at w_max* = {:.17g}", names[m], state[m], fresh[m],
+                         state[0]);
+  }
+  return "";
+}
+
+void request_laws(LAMMPS *lmp, const std::vector<LawRequest> &requests, const std::string &unloading,
+                  double pascal, Laws &out)
+{
+  if (requests.size() > MAX_LAWS)
+    lmp->error->all(FLERR, "{} distinct material pairs need a contact law each; fastrest builds at most {} in one "
+                           "run: give types that share a material identical coefficients (they share one law)",
+                    requests.size(), MAX_LAWS);
   std::string message;
   std::vector<char> bytes;
   if (lmp->comm->me == 0) {
@@ -140,7 +185,7 @@ void request_laws(LAMMPS *lmp, const std::vector<LawRequest> &requests, const st
       const char *py = std::getenv("FASTREST_PYTHON");
       std::string python = (py && *py) ? py : FASTREST_PYTHON;
       std::string cmd = shell_quote(python) + " -m fastrest lammps law --unloading " +
-          shell_quote(unloading) + " --request " + shell_quote(req) + " --out " + shell_quote(bin) +
+          shell_quote(unloading) + " --pascal " + fmt::format("{:.17g}", pascal) + " --request " + shell_quote(req) + " --out " + shell_quote(bin) +
           " 2> " + shell_quote(err) + " < /dev/null > /dev/null";
       int rc = std::system(cmd.c_str());
       if (rc != 0) {

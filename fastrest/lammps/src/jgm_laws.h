@@ -8,6 +8,7 @@
 
 #include "lammps.h"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -63,9 +64,28 @@ inline double elastic_fraction(const double *state, double w)
   return s > 1.0 ? 1.0 : (s > 0.0 ? s : 0.0);
 }
 
-//! Build the laws of `requests` (collective: every rank calls it); a LAMMPS error on failure.
+//! Pascals per pressure unit of a LAMMPS units style (si 1, cgs 0.1, micro 1e3, nano 1e6), or 0
+//! for the styles with no meaning for the law (lj, real, metal, electron).
+double pascal_per_unit(const char *units);
+
+//! Index of an unloading model (jcg 0, etsion 1, brake 2; -1 for another name).
+int unloading_index(const std::string &model);
+
+//! Elastic energy held by the normal law at elastic fraction s, over the simulation's pressure
+//! unit conversion: the integral of the unloading branch, JGM eq (32), (2/5) P_max delta s^(5/2).
+inline double normal_energy(const double *state, double s, const Law &law, double reff)
+{
+  return 0.4 * state[1] * state[3] * s * s * std::sqrt(s) * law.p_c1 * law.omega_c1 * reff * reff * reff;
+}
+
+//! Build the laws of `requests` (collective: every rank calls it), moduli and strengths in units of
+//! `pascal` Pa; a LAMMPS error on failure.
 void request_laws(LAMMPS_NS::LAMMPS *lmp, const std::vector<LawRequest> &requests,
-                  const std::string &unloading, Laws &out);
+                  const std::string &unloading, double pascal, Laws &out);
+
+//! "" if the normal history row `state` is one law `k` of `laws` can have written (w_max* in
+//! (0, the law's end], P*(w_max), w_res* and delta those of the law at w_max), else what is wrong.
+std::string row_problem(const Laws &laws, int k, const double *state);
 
 //! Parse the bytes of a law file; returns "" or what is wrong with them.
 std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &out);

@@ -1,6 +1,7 @@
-/* Registers pair_style jgm, fix wall/jgm and fix jgm/history with LAMMPS (plugin load). */
+/* Registers pair_style jgm, fix wall/jgm, fix jgm/history and compute jgm/atom with LAMMPS (plugin load). */
 #include "lammpsplugin_abi.h"
 
+#include "compute_jgm_atom.h"
 #include "fix_jgm_history.h"
 #include "fix_wall_jgm.h"
 #include "pair_jgm.h"
@@ -17,6 +18,7 @@ using namespace LAMMPS_NS;
 static Pair *jgm_pair(LAMMPS *lmp) { return new PairJGM(lmp); }
 static Fix *jgm_history(LAMMPS *lmp, int argc, char **argv) { return new FixJGMHistory(lmp, argc, argv); }
 static Fix *jgm_wall(LAMMPS *lmp, int argc, char **argv) { return new FixWallJGM(lmp, argc, argv); }
+static Compute *jgm_atom(LAMMPS *lmp, int argc, char **argv) { return new ComputeJGMAtom(lmp, argc, argv); }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
@@ -42,5 +44,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "wall/jgm";
   plugin.info = "flat walls with the JGM contact law (fastrest " FASTREST_VERSION ")";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &jgm_wall;
+  (*reg)(&plugin, lmp);
+
+  plugin.style = "compute";
+  plugin.name = "jgm/atom";
+  plugin.info = "per-atom energies of pair_style jgm's contacts (fastrest " FASTREST_VERSION ")";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &jgm_atom;
   (*reg)(&plugin, lmp);
 }

@@ -15,15 +15,22 @@
 
 namespace FastrestJGM {
 
-/* Mindlin's stiffness k_t = 8 G* a (pressure x length) of a contact with history row `state` at
-   elastic fraction s (elastic_fraction), reduced radius reff: a^2 = a_c^2 A*(w_max) s, A* from
-   the law's area cells (Hertz's a^2 proportional to the interference from w_res* on the branch). */
-inline double mindlin_stiffness(const Laws &laws, const Law &law, const double *state, double s, double reff)
+/* Contact radius a (length) of a contact with history row `state` at elastic fraction s
+   (elastic_fraction), reduced radius reff: a^2 = a_c^2 A*(w_max) s, A* from the law's area cells
+   (Hertz's a^2 proportional to the interference from w_res* on the branch). */
+inline double contact_radius(const Laws &laws, const Law &law, const double *state, double s, double reff)
 {
   double wm = state[0];
+  if (!(wm > 0.0)) return 0.0;
   const double *ar = laws.area.data() + 8 * fastrest_law_row(wm, law.first, law.last);
   double a_star = fastrest_law_estrin5((wm - ar[0]) * ar[1], ar[2], ar[3], ar[4], ar[5], ar[6], ar[7]) * s;
-  return 8.0 * law.g_eff * law.a_c1 * reff * std::sqrt(a_star > 0.0 ? a_star : 0.0);
+  return law.a_c1 * reff * std::sqrt(a_star > 0.0 ? a_star : 0.0);
+}
+
+//! Mindlin's stiffness k_t = 8 G* a (pressure x length) on the contact radius of contact_radius.
+inline double mindlin_stiffness(const Laws &laws, const Law &law, const double *state, double s, double reff)
+{
+  return 8.0 * law.g_eff * contact_radius(laws, law, state, s, reff);
 }
 
 /* n: unit normal (from the other body to this one); vt: sliding velocity of the contact point

@@ -26,12 +26,14 @@ using FastrestJGM::Body;
 static const char *HISTORY_ID = "FASTREST_JGM_HISTORY";
 
 PairJGM::PairJGM(LAMMPS *lmp) :
-    Pair(lmp), unloading_model("jcg"), mu(-1.0), maxrad(0.0), ended(0.0), history(nullptr)
+    Pair(lmp), unloading_model("jcg"), mu(-1.0), neighprev(0), history(nullptr)
 {
   nextra = 2;    // compute pair jgm: [1] energy dissipated in contacts, [2] elastic energy they hold
   pvector = new double[2];
   pvector[0] = pvector[1] = 0.0;
-  single_enable = 0;
+  single_enable = 1;    // compute pair/local: per-contact values (svector, see single())
+  single_extra = NSINGLE;
+  svector = new double[NSINGLE];
   restartinfo = 0;    // pair_style and pair_coeff are given again after read_restart
   finitecutflag = 1;
   no_virial_fdotr_compute = 1;    // forces on ghosts stay 0 (newton-off list): sum pair by pair
@@ -40,6 +42,7 @@ PairJGM::PairJGM(LAMMPS *lmp) :
 PairJGM::~PairJGM()
 {
   delete[] pvector;
+  delete[] svector;
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -53,8 +56,10 @@ void PairJGM::allocate()
   int n = atom->ntypes + 1;
   memory->create(setflag, n, n, "pair:setflag");
   memory->create(cutsq, n, n, "pair:cutsq");
+  // setflag[i][i] = 1 for every type: LAMMPS's generic "All pair coeffs are not set" would come
+  // first otherwise; init_style names the type that has no material
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) setflag[i][j] = 0;
+    for (int j = 0; j < n; ++j) setflag[i][j] = (i == j);
   mat.assign(n, Body{0.0, 0.0, 0.0, 0.0});
   mat_set.assign(n, 0);
 }
@@ -111,7 +116,6 @@ void PairJGM::coeff(int narg, char **arg)
       if (i != j) continue;
       mat[i] = b;
       mat_set[i] = 1;
-      setflag[i][i] = 1;
       ++count;
     }
   if (count == 0)
@@ -129,6 +133,9 @@ void PairJGM::init_style()
 {
   if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "pair_style jgm needs per-atom radius, omega and torque (atom_style sphere)");
+  if (FastrestJGM::pascal_per_unit(update->unit_style) <= 0.0)
+    error->all(FLERR, "pair_style jgm: units {} have no meaning for a continuum contact law of macroscopic "
+                      "spheres; use units si, cgs, micro or nano", update->unit_style);
   neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_NEWTON_OFF);
 
   Fix *f = modify->get_fix_by_id(HISTORY_ID);
@@ -139,10 +146,93 @@ void PairJGM::init_style()
   history = dynamic_cast<FixJGMHistory *>(f);
   if (!history) error->all(FLERR, "fix ID {} is reserved for pair_style jgm", HISTORY_ID);
 
-  double local = 0.0;
-  for (int i = 0; i < atom->nlocal; ++i) local = std::max(local, atom->radius[i]);
-  MPI_Allreduce(&local, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
+  // the largest radius of each type, as pair granular finds it: the atoms there now and any fix
+  // that will insert atoms of the type (fix pour, fix deposit: extract("radius", type)); the
+  // neighbour cutoff of two types is the sum of theirs
+  int n = atom->ntypes;
+  std::vector<double> local(n + 1, 0.0);
+  for (Fix *fix : modify->get_fix_list())
+    for (int t = 1; t <= n; ++t) {
+      int dim = t;
+      auto *r = static_cast<double *>(fix->extract("radius", dim));
+      if (r && dim == 0 && std::isfinite(*r)) local[t] = std::max(local[t], *r);
+    }
+  for (int i = 0; i < atom->nlocal; ++i) local[atom->type[i]] = std::max(local[atom->type[i]], atom->radius[i]);
+  onerad.assign(n + 1, 0.0);
+  MPI_Allreduce(local.data(), onerad.data(), n + 1, MPI_DOUBLE, MPI_MAX, world);
   build_laws();
+  history->model = model_record();
+  check_restored_model();
+}
+
+std::vector<double> PairJGM::model_record() const
+{
+  int n = atom->ntypes;
+  std::vector<double> rec = {static_cast<double>(n), static_cast<double>(FastrestJGM::unloading_index(unloading_model)),
+                             mu};
+  for (int t = 1; t <= n; ++t) rec.insert(rec.end(), {mat[t].E, mat[t].nu, mat[t].Sy, mat[t].Et});
+  return rec;
+}
+
+// A run read back from a restart file: its open contacts are histories of the model the file
+// records; another material for a type with open contacts (or another unloading model) would
+// reinterpret them silently
+void PairJGM::check_restored_model()
+{
+  if (history->restored_model.empty()) return;
+  const std::vector<double> old = history->restored_model;
+  history->restored_model.clear();    // checked once, at the first run after read_restart
+  int n = atom->ntypes;
+  std::vector<int> open(n + 1, 0), all(n + 1, 0);
+  for (int i = 0; i < atom->nlocal; ++i)
+    if (history->partner_count(i) > 0) open[atom->type[i]] = 1;
+  MPI_Allreduce(open.data(), all.data(), n + 1, MPI_INT, MPI_MAX, world);
+  int any = 0;
+  for (int t = 1; t <= n; ++t) any = any || all[t];
+  if (!any) return;
+  if (old.size() != static_cast<size_t>(3 + 4 * n) || old[0] != n)
+    error->all(FLERR, "pair_style jgm: the restart file's model is not one of {} atom types (damaged)", n);
+  const char *names[] = {"jcg", "etsion", "brake"};
+  int was = static_cast<int>(old[1]);
+  if (was != FastrestJGM::unloading_index(unloading_model))
+    error->all(FLERR, "pair_style jgm: the restart file's open contacts follow unloading {}, this run gives "
+                      "unloading {}: give 'pair_style jgm unloading {}' (or start them anew from a data file)",
+               was >= 0 && was < 3 ? names[was] : "(damaged)", unloading_model, was >= 0 && was < 3 ? names[was] : "?");
+  for (int t = 1; t <= n; ++t) {
+    if (!all[t]) continue;
+    const double *o = &old[3 + 4 * (t - 1)];
+    if (o[0] != mat[t].E || o[1] != mat[t].nu || o[2] != mat[t].Sy || o[3] != mat[t].Et)
+      error->all(FLERR, "pair_coeff jgm: atom type {} has open contacts in the restart file with material E {:.17g} "
+                        "nu {:.17g} Sy {:.17g} Et {:.17g}; this run gives E {:.17g} nu {:.17g} Sy {:.17g} Et {:.17g}. "
+                        "Give the restart's material, or continue from a data file (write_data), where contacts "
+                        "start anew", t, o[0], o[1], o[2], o[3], mat[t].E, mat[t].nu, mat[t].Sy, mat[t].Et);
+  }
+}
+
+// Every history row read from a restart file is one the law can have written: w_max* within the
+// law's domain, P*(w_max), w_res* and delta those of the law at that w_max
+void PairJGM::check_restored_rows()
+{
+  history->restored_rows = false;
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  int stride = atom->ntypes + 1;
+  for (int ii = 0; ii < list->inum; ++ii) {
+    int i = list->ilist[ii];
+    int *jlist = list->firstneigh[i];
+    const double *h = history->values(i);
+    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += NHIST) {
+      bool active = false;
+      for (int k = 0; k < NHIST; ++k) active = active || h[k] != 0.0;
+      if (!active) continue;
+      int j = jlist[jj] & NEIGHMASK;
+      std::string why = FastrestJGM::row_problem(laws, law_of[type[i] * stride + type[j]], h);
+      if (why.empty() && !(h[H_Q] > 0.0 && h[H_Q] < 2.0)) why = "its lever fraction is not in (0, 2)";
+      if (!why.empty())
+        error->one(FLERR, "pair jgm: the restart file's contact of atoms {} and {} (types {} {}) is no history of "
+                          "their law: {}", tag[i], tag[j], type[i], type[j], why);
+    }
+  }
 }
 
 void PairJGM::init_list(int id, NeighList *ptr)
@@ -156,7 +246,12 @@ double PairJGM::init_one(int i, int j)
   if (!mat_set[i] || !mat_set[j])
     error->all(FLERR, "pair_coeff jgm: no material for atom type {} (pair_coeff {} {} E nu Sy)",
                mat_set[i] ? j : i, mat_set[i] ? j : i, mat_set[i] ? j : i);
-  return maxrad > 0.0 ? 2.0 * maxrad : 1.0;
+  if (onerad[i] > 0.0 && onerad[j] > 0.0) return onerad[i] + onerad[j];
+  // a type with no atom and no inserting fix: the largest reach of any (compute() stops a run
+  // where an atom is larger than its type's radius here)
+  double most = 0.0;
+  for (int t = 1; t <= atom->ntypes; ++t) most = std::max(most, onerad[t]);
+  return 2.0 * most;
 }
 
 void PairJGM::build_laws()
@@ -185,7 +280,7 @@ void PairJGM::build_laws()
       }
       law_of[i * (n + 1) + j] = law_of[j * (n + 1) + i] = found;
     }
-  FastrestJGM::request_laws(lmp, req, unloading_model, laws);
+  FastrestJGM::request_laws(lmp, req, unloading_model, FastrestJGM::pascal_per_unit(update->unit_style), laws);
   laws_key = key.str();
 }
 
@@ -212,11 +307,17 @@ void PairJGM::compute(int eflag, int vflag)
   // the forces of a run's set-up are those of the state as it is: histories advance only in steps
   // (a restarted run then repeats the uninterrupted one)
   const bool setup = update->setupflag != 0;
+  if (setup && history->restored_rows) check_restored_rows();
   double scratch[NHIST];
 
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
     double xi = x[i][0], yi = x[i][1], zi = x[i][2], ri = radius[i];
+    // the neighbour cutoff was set for this type's largest radius: a larger atom could miss contacts
+    if (ri > onerad[type[i]])
+      error->one(FLERR, "pair jgm: atom {} (type {}) has radius {:.6g}, larger than the {:.6g} the neighbour cutoff "
+                        "was set for at the run's start (the type's atoms then and the radii that fix pour or fix "
+                        "deposit insert); start a new run after changing radii", tag[i], type[i], ri, onerad[type[i]]);
     int *jlist = list->firstneigh[i];
     double *row = history->values(i);
     for (int jj = 0; jj < list->numneigh[i]; ++jj, row += NHIST) {
@@ -235,9 +336,12 @@ void PairJGM::compute(int eflag, int vflag)
       double r = std::sqrt(rsq);
       double reff = ri * radius[j] / radsum;
       double w = (radsum - r) / (law.omega_c1 * reff);
-      // an ended contact's energy is dissipated, and a later touch is a new contact
+      // an ended contact's energy is dissipated (half to each atom), and a later touch is a new contact
       if (FastrestJGM::contact_over(w, h)) {
-        if (!setup) ended += weight * h[H_W];
+        if (!setup) {
+          history->ended(i) += 0.5 * h[H_W];
+          if (j < nlocal) history->ended(j) += 0.5 * h[H_W];
+        }
         for (int k = 0; k < NHIST; ++k) h[k] = 0.0;
         continue;
       }
@@ -245,7 +349,8 @@ void PairJGM::compute(int eflag, int vflag)
       if (!(p == p)) {
         if (w > law.w_end)
           error->one(FLERR, "pair jgm: atoms {} and {} (types {} {}) overlap past the model's end: w* = {:.6g} > {:.6g} "
-                            "(interference {:.6g} of reduced radius {:.6g}); lower the impact speed or the time step",
+                            "(interference {:.6g} of reduced radius {:.6g}): the impact is faster than the model "
+                            "covers, or the time step too long for the contact",
                      tag[i], tag[j], type[i], type[j], w, law.w_end, radsum - r, reff);
         error->one(FLERR, "pair jgm: atoms {} and {} (types {} {}): no force at w* = {:.6g} (history lost)",
                    tag[i], tag[j], type[i], type[j], w);
@@ -254,8 +359,7 @@ void PairJGM::compute(int eflag, int vflag)
       double n[3] = {dx / r, dy / r, dz / r};
       // elastic energy of the normal law: the integral of its unloading branch, JGM eq (32)
       double s = FastrestJGM::elastic_fraction(h, w);
-      double elastic = 0.4 * h[1] * h[3] * s * s * std::sqrt(s) * law.p_c1 * law.omega_c1 * reff * reff * reff *
-          from_pressure;
+      double elastic = FastrestJGM::normal_energy(h, s, law, reff) * from_pressure;
       double ft[3] = {0.0, 0.0, 0.0};
       // lever arms of the contact point, li + lj = r: torques then conserve angular momentum
       double q = r / radsum, li = ri * q, lj = radius[j] * q;
@@ -278,12 +382,15 @@ void PairJGM::compute(int eflag, int vflag)
       }
       // energy the contact takes from the atoms over the step: minus the trapezoid work of its
       // force and torques with the half-step velocities velocity Verlet moves the atoms by; summed
-      // over contacts, the kinetic energy it gives them between force-free states, to rounding
-      double work = 0.0;
-      for (int k = 0; k < 3; ++k)
-        work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) - (ri * h[H_Q] * h[H_C + k] - ti[k]) * omega[i][k] -
-            (radius[j] * h[H_Q] * h[H_C + k] - tj[k]) * omega[j][k];
-      h[H_W] -= 0.5 * dt * work;
+      // over contacts, the kinetic energy it gives them between force-free states, to rounding.
+      // None at set-up: no step is taken there
+      if (!setup) {
+        double work = 0.0;
+        for (int k = 0; k < 3; ++k)
+          work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) - (ri * h[H_Q] * h[H_C + k] - ti[k]) * omega[i][k] -
+              (radius[j] * h[H_Q] * h[H_C + k] - tj[k]) * omega[j][k];
+        h[H_W] -= 0.5 * dt * work;
+      }
       h[H_Q] = q;
       for (int k = 0; k < 3; ++k) {
         h[H_F + k] = fv[k];
@@ -303,6 +410,108 @@ void PairJGM::compute(int eflag, int vflag)
       if (evflag) ev_tally_xyz(i, j, nlocal, 0, elastic, 0.0, fv[0], fv[1], fv[2], dx, dy, dz);
     }
   }
+  double ended = 0.0;
+  for (int i = 0; i < nlocal; ++i) ended += history->ended(i);
   pvector[0] = ended + dissipated;
   pvector[1] = stored;
+}
+
+double PairJGM::contact_state(const double *h, const FastrestJGM::Law &law, double w, double reff, const double *n,
+                              double &elastic, double *ft) const
+{
+  const double from_pressure = 1.0 / force->nktv2p;
+  double copy[FastrestJGM::STATE] = {h[0], h[1], h[2], h[3]};
+  double p = fastrest_law_step(laws.rows.data(), law.first, law.last, law.w_end, copy, w);
+  double s = FastrestJGM::elastic_fraction(copy, w);
+  elastic = FastrestJGM::normal_energy(copy, s, law, reff) * from_pressure;
+  double fn = p * law.p_c1 * reff * reff * from_pressure;
+  double along = h[H_F] * n[0] + h[H_F + 1] * n[1] + h[H_F + 2] * n[2];
+  for (int k = 0; k < 3; ++k) ft[k] = mu >= 0.0 ? h[H_F + k] - along * n[k] : 0.0;
+  double kt = mu >= 0.0 ? FastrestJGM::mindlin_stiffness(laws, law, copy, s, reff) * from_pressure : 0.0;
+  if (kt > 0.0) elastic += 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]) / kt;
+  return fn;
+}
+
+// The history row of local atom i and atom j in the pair's list (under i, or under j if j is local:
+// then flipped), or nullptr
+const double *PairJGM::row_of(int i, int j, bool &flipped)
+{
+  flipped = false;
+  if (!list || !history || i >= atom->nlocal) return nullptr;
+  for (int side = 0; side < 2; ++side) {
+    int a = side == 0 ? i : j, b = side == 0 ? j : i;
+    if (a >= atom->nlocal) break;
+    int num = list->numneigh[a], *jlist = list->firstneigh[a];
+    for (int jj = 0; jj < num; ++jj)
+      if ((jlist[jj] & NEIGHMASK) == b) {
+        flipped = side == 1;
+        return history->values(a) + static_cast<size_t>(jj) * NHIST;
+      }
+  }
+  return nullptr;
+}
+
+// compute pair/local: fforce (the force on i is fforce (x_i - x_j)), the elastic energy held, and
+// svector (see NSINGLE); zeros for two atoms not in contact
+double PairJGM::single(int i, int j, int itype, int jtype, double rsq, double, double, double &fforce)
+{
+  fforce = 0.0;
+  for (int k = 0; k < NSINGLE; ++k) svector[k] = 0.0;
+  bool flipped;
+  const double *h = row_of(i, j, flipped);
+  double *radius = atom->radius;
+  double radsum = radius[i] + radius[j];
+  if (!h || (rsq >= radsum * radsum && !(h[0] > 0.0)) || rsq <= 0.0) return 0.0;
+  const FastrestJGM::Law &law = laws.law[law_of[itype * (atom->ntypes + 1) + jtype]];
+  double r = std::sqrt(rsq), reff = radius[i] * radius[j] / radsum;
+  double w = (radsum - r) / (law.omega_c1 * reff);
+  if (FastrestJGM::contact_over(w, h)) return 0.0;
+  double **x = atom->x;
+  double n[3] = {(x[i][0] - x[j][0]) / r, (x[i][1] - x[j][1]) / r, (x[i][2] - x[j][2]) / r};
+  double elastic, ft[3];
+  double fn = contact_state(h, law, w, reff, n, elastic, ft);
+  fforce = fn / r;
+  svector[0] = fn;
+  svector[1] = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+  svector[2] = w;
+  svector[3] = h[0];
+  svector[4] = h[H_W] - elastic;
+  svector[5] = FastrestJGM::contact_radius(laws, law, h, FastrestJGM::elastic_fraction(h, w), reff);
+  svector[6] = elastic;
+  return elastic;
+}
+
+void PairJGM::per_atom(double **out)
+{
+  int nlocal = atom->nlocal, stride = atom->ntypes + 1;
+  double **x = atom->x, *radius = atom->radius;
+  int *type = atom->type;
+  for (int i = 0; i < nlocal; ++i) {
+    out[i][0] = history ? history->ended(i) : 0.0;
+    out[i][1] = out[i][2] = 0.0;
+  }
+  if (!list || !history) return;
+  for (int ii = 0; ii < list->inum; ++ii) {
+    int i = list->ilist[ii];
+    int *jlist = list->firstneigh[i];
+    const double *h = history->values(i);
+    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += NHIST) {
+      if (!(h[0] > 0.0)) continue;
+      int j = jlist[jj] & NEIGHMASK;
+      double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+      double r = std::sqrt(dx * dx + dy * dy + dz * dz), radsum = radius[i] + radius[j];
+      const FastrestJGM::Law &law = laws.law[law_of[type[i] * stride + type[j]]];
+      double reff = radius[i] * radius[j] / radsum;
+      double w = (radsum - r) / (law.omega_c1 * reff);
+      if (FastrestJGM::contact_over(w, h) || !(r > 0.0)) continue;
+      double n[3] = {dx / r, dy / r, dz / r}, elastic, ft[3];
+      contact_state(h, law, w, reff, n, elastic, ft);
+      for (int a : {i, j}) {
+        if (a >= nlocal) continue;
+        out[a][0] += 0.5 * (h[H_W] - elastic);
+        out[a][1] += 0.5 * elastic;
+        out[a][2] += 1.0;
+      }
+    }
+  }
 }

@@ -19,6 +19,9 @@ class PairJGM : public Pair {
   // (negated for j): H_F the force on i at the last step, H_XI the tangential displacement
   static constexpr int H_W = FastrestJGM::STATE, H_Q = H_W + 1, H_C = H_Q + 1, H_F = H_C + 3, H_XI = H_F + 3,
                        NHIST = H_XI + 3;
+  //! single()'s extra values (compute pair/local p1..p7): normal force, |tangential force|, w*,
+  //! w_max*, energy dissipated so far, contact radius, elastic energy held
+  static constexpr int NSINGLE = 7;
 
   PairJGM(class LAMMPS *);
   ~PairJGM() override;
@@ -28,6 +31,11 @@ class PairJGM : public Pair {
   void init_style() override;
   void init_list(int, class NeighList *) override;
   double init_one(int, int) override;
+  double single(int, int, int, int, double, double, double, double &) override;
+
+  //! Per local atom: [0] energy dissipated by its contacts (its half of each: those that ended and
+  //! the open ones so far), [1] elastic energy its open contacts hold (half), [2] open contacts.
+  void per_atom(double **out);
 
   //! The material of atom type t (set by pair_coeff t t), or nullptr.
   const FastrestJGM::Body *material(int t) const;
@@ -42,12 +50,20 @@ class PairJGM : public Pair {
   FastrestJGM::Laws laws;
   std::vector<int> law_of;               // (ntypes + 1)^2: law index of a type pair
   std::string laws_key;                  // what the laws were built for
-  double maxrad;
-  double ended;    // work of the contacts that ended on this rank (their dissipated energy)
+  std::vector<double> onerad;            // per type: the largest radius at set-up or to be inserted
+  int neighprev;                         // single(): where the last partner was found
   class FixJGMHistory *history;
 
   void allocate();
   void build_laws();
+  std::vector<double> model_record() const;
+  void check_restored_model();
+  void check_restored_rows();
+  const double *row_of(int i, int j, bool &flipped);
+  //! Normal force (force units) and elastic energy held of the contact with row h at w*; ft the
+  //! tangential force from the row's last step (its part normal to n removed).
+  double contact_state(const double *h, const FastrestJGM::Law &law, double w, double reff, const double *n,
+                       double &elastic, double *ft) const;
 };
 
 }    // namespace LAMMPS_NS
