@@ -144,3 +144,68 @@ def wall_script(materials, wall, drops, R, rho, dt, steps, *, unloading="jcg", a
               "write_dump all custom final.dump id x y z vx vy vz omegax omegay omegaz modify sort id "
               "format float %.17g"]
     return "\n".join(lines) + "\n"
+
+
+#: The pour tests' material (a soft elastic-plastic solid: contacts last ~1e-4 s, V_c = 3 mm/s,
+#: the model's end 2.7 m/s for 2 mm spheres) and density, SI.
+POUR_MATERIAL = (1e8, 0.3, 5e5)
+POUR_RHO = 2500.0
+
+
+def pour_script(style, units="si", bed=False, n=300, steps=40000, ranks_grid="* * *"):
+    """``fix pour`` into an empty 2 cm x 2 cm periodic box onto a flat wall at z = 0, as LAMMPS's
+    examples/granular pours: ``n`` spheres of 2 mm, or (``bed``) ``n`` of 1 mm then ``n // 3`` of
+    1.5-2 mm onto them. ``style`` ``jgm`` (pair_style jgm, fix wall/jgm, tangential mindlin 0.3) or
+    ``granular`` (hertz/material with the same E and nu, mindlin 0.3, e = 0.5). ``units`` ``si`` or
+    ``micro`` (the same system in micrometres, microseconds, picograms). Prints ``RESULT n`` (atoms)
+    and ``RESULT z`` (centre of mass height, m, and kinetic energy); writes ``final.dump``."""
+    L, T, M = (1.0, 1.0, 1.0) if units == "si" else (1e6, 1e6, 1e15)
+    pa = M / (L * T * T)  # 1 Pa in the style's pressure unit
+    E, nu, Sy = POUR_MATERIAL[0] * pa, POUR_MATERIAL[1], POUR_MATERIAL[2] * pa
+    rho, g, v0 = POUR_RHO * M / L ** 3, 9.81 * L / (T * T), -0.3 * L / T
+    box, top, d_big, d_small = 0.02 * L, 0.03 * L, 0.002 * L, 0.001 * L
+    lines = [f"units {units}", "atom_style sphere", "boundary p p fm", "comm_modify vel yes",
+             f"processors {ranks_grid}",
+             f"region box block 0 {box!r} 0 {box!r} 0 {top!r} units box", "create_box 2 box",
+             f"neighbor {0.2 * d_small!r} bin", "neigh_modify delay 0"]
+    if style == "jgm":
+        lines += ["plugin load @PLUGIN@", "pair_style jgm tangential mindlin 0.3", f"pair_coeff * * {E!r} {nu!r} {Sy!r}",
+                  f"fix wall all wall/jgm zplane 0.0 NULL {E!r} {nu!r} {Sy!r}"]
+    else:
+        gran = f"hertz/material {E!r} 0.5 {nu!r} tangential mindlin NULL 1.0 0.3 damping coeff_restitution"
+        lines += ["pair_style granular", f"pair_coeff * * {gran}", f"fix wall all wall/gran granular {gran} zplane 0.0 NULL"]
+    lines += [f"timestep {4e-6 * T!r}", "fix 1 all nve/sphere", f"fix 2 all gravity {g!r} vector 0 0 -1",
+              f"region slab block 0 {box!r} 0 {box!r} {0.012 * L!r} {0.028 * L!r} units box",
+              "compute ke all ke", "variable zc equal xcm(all,z)", "thermo_style custom step atoms c_ke v_zc",
+              "thermo 5000"]
+    pour = f"region slab dens {rho!r} {rho!r} vel 0 0 0 0 {v0!r}"
+    if bed:
+        lines += [f"fix ins all pour {n} 1 4767 {pour} diam one {d_small!r}", f"run {steps}", "unfix ins",
+                  f"fix ins2 all pour {n // 3} 2 5151 {pour} diam range {0.75 * d_big!r} {d_big!r}", f"run {steps}"]
+    else:
+        lines += [f"fix ins all pour {n} 1 4767 {pour} diam one {d_big!r}", f"run {steps}"]
+    lines += ['print "RESULT n $(count(all))"', f'print "RESULT z $(v_zc/{L!r}:%.17g) $(c_ke:%.6g)"',
+              "write_dump all custom final.dump id type radius x y z modify sort id format float %.17g"]
+    return "\n".join(lines) + "\n"
+
+
+def run_stats(out):
+    """(ghost atoms, MB per rank, neighbour cutoff) from a LAMMPS output (its last run)."""
+    ghosts = [float(line.split()[1]) for line in out.splitlines() if line.startswith("Nghost:")]
+    mem = [float(line.split("=")[1].split("|")[2].split()[0]) for line in out.splitlines() if "memory allocation" in line]
+    cut = [float(line.split("=")[1]) for line in out.splitlines() if "master list distance cutoff" in line]
+    return ghosts[-1], max(mem), cut[-1]
+
+
+def deepest_overlap(dump, box):
+    """Largest overlap of two spheres over their reduced radius, in a dump of id type radius x y z,
+    periodic in x and y with period ``box``."""
+    d = np.array([[float(v) for v in t.split()] for t in pathlib.Path(dump).read_text().splitlines()[9:] if t.strip()])
+    r, x = d[:, 2], d[:, 3:6]
+    dx = x[:, None, :] - x[None, :, :]
+    dx[..., :2] -= box * np.round(dx[..., :2] / box)
+    dist = np.sqrt((dx ** 2).sum(-1))
+    rs = r[:, None] + r[None, :]
+    reff = r[:, None] * r[None, :] / rs
+    np.fill_diagonal(dist, np.inf)
+    return float(((rs - dist) / reff).max())
