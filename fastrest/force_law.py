@@ -55,7 +55,7 @@ from .loading import p_star_above, resolve as resolve_loading
 from .critical import c_of_nu
 from .energy import f_star_kernel, omega_m_kernel
 from .forward import ForwardData, P_table_forward, forward_data, loss_forward
-from .law_cells import law_step, law_step_branching, material_law
+from .law_cells import elastic_back, law_step, law_step_branching, material_law
 from .limits import interference_limit, raise_interference_out_of_range, raise_out_of_range, w_upper_model
 from .scene import material_index
 from . import unloading as _unloading
@@ -139,9 +139,8 @@ def contact_force(law, state, w):
     -------
     float
         P* (-). NaN for NaN or infinite w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
-        the unloading model), a state whose w_max = state[0] is negative or NaN, or positive
-        with delta = state[3] <= 0 (no history of this law; a row fastrest 0.2 wrote while its
-        contact loaded); the state is then set to NaN (the contact's history is lost: every
+        the unloading model), a state whose w_max = state[0] is negative, NaN or past the law's
+        end, or positive with delta = state[3] <= 0 (no history of this law); the state is then set to NaN (the contact's history is lost: every
         later call gives NaN until the row is zeroed). A jit kernel: it never raises.
 
     Notes
@@ -587,6 +586,8 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
             w_new = w + v * h + 0.5 * a * h * h
         if w_new > w_end and w_new > state[0] and w_new > W_SWITCH:
             p = _overshoot_force(law, state, w_new)
+        elif state[0] > w_end:  # unloading from an overshoot: the law refuses such a row; its branch
+            p = elastic_back(state[0], state[1], state[3], w_new)
         else:
             p = _contact_force_sequential(law, state, w_new)
         a_new = -1.25 * p

@@ -137,10 +137,12 @@ def elastic_back(w_max, p_max, delta, w):
 @jit(inline=True)
 def outside(w_end, w_max, delta, w):
     """0.0, or NaN where the law does not apply: w NaN, -inf or past ``w_end``; a row with w_max
-    < 0 or NaN, or w_max > 0 with delta <= 0 (no history of a law). Selects on one comparison each."""
+    < 0, NaN or past ``w_end``, or w_max > 0 with delta <= 0 (no history of a law). Selects on one
+    comparison each."""
     bad = select(w <= w_end, 0.0, math.nan)
     bad = select(w > -math.inf, bad, math.nan)
     bad = select(w_max >= 0.0, bad, math.nan)
+    bad = select(w_max <= w_end, bad, math.nan)
     return select(delta > 0.0, bad, select(w_max == 0.0, bad, math.nan))
 
 
@@ -174,7 +176,7 @@ def law_step(rows, first, last, w_end, state, w):
     -------
     float
         P* (-). NaN, and the row set to NaN, for w NaN, -inf or past ``w_end``, and for a row that
-        is no history of a law (w_max < 0 or NaN; w_max > 0 with delta <= 0).
+        is no history of a law (w_max < 0, NaN or past ``w_end``; w_max > 0 with delta <= 0).
     """
     w_max = state[0]
     p_max = state[1]

@@ -243,3 +243,24 @@ def test_law_header_compiles_with_nvrtc(tmp_path):
     rc, log, ptx = _nvrtc_compile(lib, text + kernel, ["--gpu-architecture=compute_90", "-std=c++14", "--fmad=false"])
     assert rc == 0 and log.strip() == "", log
     assert ".entry fastrest_kernel" in ptx and "fma.rn.f64" in ptx
+
+
+@pytest.mark.parametrize("w_max", [500.0, 1e300, np.inf])
+def test_a_row_past_the_end_gives_nan_in_c_and_jit(compiled, w_max):
+    """A history row whose w_max lies past the law's end (w* = 425: a damaged restart, a code's
+    slot overwritten) is no history of the law: NaN and the row set to NaN, in the jit law and
+    the C law (docs/export.md), never the elastic branch's force or 0."""
+    laws, so, _ = compiled
+    law = laws[0]
+    w = np.array([0.5, 200.0])
+    row = np.array([w_max, 1e3, 0.5 * min(w_max, 1e300), 0.5 * min(w_max, 1e300)])
+    ref_out, ref_states = np.empty(w.size), np.empty((w.size, 4))
+    _jit_run(law.data, w, row.copy(), ref_out, ref_states)
+    assert np.isnan(ref_out).all() and np.isnan(ref_states).all()
+    for branching in (0, 1):
+        out, states = _c_run(so, 0, w, row.copy(), branching)
+        assert np.isnan(out).all() and np.isnan(states).all(), branching
+    # the law's end itself is still the law's
+    end = law.data.w_max
+    state = np.zeros(4)
+    assert np.isfinite(frj.contact_force(law.data, state, end)) and np.isfinite(frj.contact_force(law.data, state, 1.0))

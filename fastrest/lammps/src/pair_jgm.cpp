@@ -157,7 +157,15 @@ void PairJGM::init_style()
       auto *r = static_cast<double *>(fix->extract("radius", dim));
       if (r && dim == 0 && std::isfinite(*r)) local[t] = std::max(local[t], *r);
     }
-  for (int i = 0; i < atom->nlocal; ++i) local[atom->type[i]] = std::max(local[atom->type[i]], atom->radius[i]);
+  for (int i = 0; i < atom->nlocal; ++i) {
+    int t = atom->type[i];
+    // LAMMPS takes a restart file's types as they are: a damaged one must not index the laws
+    if (t < 1 || t > n) error->one(FLERR, "pair jgm: atom {} has type {}, not in 1..{}", atom->tag[i], t, n);
+    double r = atom->radius[i];
+    if (!(r > 0.0 && std::isfinite(r)))
+      error->one(FLERR, "pair jgm: atom {} has radius {}, which must be finite and > 0", atom->tag[i], r);
+    local[t] = std::max(local[t], r);
+  }
   onerad.assign(n + 1, 0.0);
   MPI_Allreduce(local.data(), onerad.data(), n + 1, MPI_DOUBLE, MPI_MAX, world);
   build_laws();
