@@ -265,19 +265,24 @@ double PairJGM::init_one(int i, int j)
 void PairJGM::build_laws()
 {
   int n = atom->ntypes;
+  // alone, every type needs a material; in pair_style hybrid only the types jgm serves (hybrid
+  // calls init_one for each pair of types it maps here, and that names a type without one)
+  const bool alone = force->pair == this;
   for (int t = 1; t <= n; ++t)
-    if (!mat_set[t])
+    if (!mat_set[t] && alone)
       error->all(FLERR, "pair_coeff jgm: no material for atom type {} (pair_coeff {} {} E nu Sy)", t, t, t);
   std::ostringstream key;
   key.precision(17);
   key << unloading_model;
-  for (int t = 1; t <= n; ++t) key << ' ' << mat[t].E << ' ' << mat[t].nu << ' ' << mat[t].Sy << ' ' << mat[t].Et;
+  for (int t = 1; t <= n; ++t)
+    key << ' ' << mat_set[t] << ' ' << mat[t].E << ' ' << mat[t].nu << ' ' << mat[t].Sy << ' ' << mat[t].Et;
   if (key.str() == laws_key) return;
 
   std::vector<FastrestJGM::LawRequest> req;
   law_of.assign((n + 1) * (n + 1), -1);
   for (int i = 1; i <= n; ++i)
     for (int j = i; j <= n; ++j) {
+      if (!mat_set[i] || !mat_set[j]) continue;
       int found = -1;
       for (size_t k = 0; k < req.size() && found < 0; ++k)
         if (std::memcmp(&req[k].a, &mat[i], sizeof(Body)) == 0 && std::memcmp(&req[k].b, &mat[j], sizeof(Body)) == 0)
@@ -288,6 +293,11 @@ void PairJGM::build_laws()
       }
       law_of[i * (n + 1) + j] = law_of[j * (n + 1) + i] = found;
     }
+  if (req.empty()) {    // hybrid with no type given a material here: nothing to build
+    laws = FastrestJGM::Laws();
+    laws_key = key.str();
+    return;
+  }
   FastrestJGM::request_laws(lmp, req, unloading_model, FastrestJGM::pascal_per_unit(update->unit_style), laws);
   laws_key = key.str();
 }
