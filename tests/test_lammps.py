@@ -227,7 +227,9 @@ def test_dissipated_energy_of_head_on_impacts_is_the_kinetic_energy_lost(tmp_pat
     assert abs(dissipated - ref) <= 1e-5 * ref
 
 
-@pytest.mark.parametrize("np_,tangential", [(1, "none"), (2, "none"), (2, "mindlin 0.3")])
+@pytest.mark.parametrize("np_,tangential", [(1, "none"), (2, "none"), (2, "mindlin 0.3"),
+                                            (2, "mindlin 0.3 rolling sds 300 0.001 0.05 twisting marshall"),
+                                            (1, "mindlin 0.3 rolling sds 300 0 0.05 twisting sds 1e-3 1e-6 1e-4")])
 def test_granular_gas_energy_balance(tmp_path, np_, tangential):
     """1000 spheres in a periodic box: kinetic energy lost = dissipated + held by open contacts."""
     r = 1e-3

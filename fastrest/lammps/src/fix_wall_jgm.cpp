@@ -96,6 +96,10 @@ void FixWallJGM::init()
   if (!pair) error->all(FLERR, "fix wall/jgm needs pair_style jgm (the particles' materials)");
   std::string model = unloading.empty() ? pair->unloading() : unloading;
   if (!mu_given) mu = pair->friction();    // the pair style's tangential model, unless given here
+  res = pair->resistance();                 // and its rolling and twisting resistance
+  if (res.twist == FastrestJGM::Resistance::MARSHALL && mu < 0.0)
+    error->all(FLERR, "fix wall/jgm: the pair style's 'twisting marshall' needs the wall's tangential mindlin MU, "
+                      "but the wall has 'tangential none'");
   if (!restored_wall.empty()) {
     const std::vector<double> &o = restored_wall;
     bool open = false;
@@ -142,7 +146,7 @@ void FixWallJGM::setup(int vflag)
         if (!active) continue;
         std::string why = FastrestJGM::row_problem(laws, law_of[atom->type[i]], h);
         for (int k = FastrestJGM::STATE; k < PER_WALL && why.empty(); ++k)
-          if (!std::isfinite(h[k])) why = "a tangential displacement is not finite";
+          if (!std::isfinite(h[k])) why = "a tangential, rolling or twisting value is not finite";
         if (!why.empty())
           error->one(FLERR, "fix wall/jgm: the restart file's contact of atom {} with the {} wall is no history of "
                             "its law: {}", atom->tag[i], side == 0 ? "lower" : "upper", why);
@@ -204,13 +208,20 @@ void FixWallJGM::post_force(int)
       double fn = p * law.p_c1 * r * r * from_pressure;
       double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
       double ft[3] = {0.0, 0.0, 0.0};
+      double s = FastrestJGM::elastic_fraction(h, w), a = FastrestJGM::contact_radius(laws, law, h, s, r);
+      double kt = 8.0 * law.g_eff * a * from_pressure;
+      if (res.any()) {    // as pair_style jgm, the wall at rest and the sphere's radius the reduced one
+        double mt[3];
+        FastrestJGM::resistance_step(res, h + W_R, h + W_T, omega[i], n, r, fn, kt, a, mu,
+                                     update->setupflag ? 0.0 : dt, mt);
+        for (int k = 0; k < 3; ++k) torque[i][k] += mt[k];
+      }
       if (mu >= 0.0) {    // as pair_style jgm, with the wall at rest
-        double kt = FastrestJGM::mindlin_stiffness(laws, law, h, FastrestJGM::elastic_fraction(h, w), r) * from_pressure;
         // contact point: v + omega x (-r n)
         double vt[3] = {v[i][0] - r * (omega[i][1] * n[2] - omega[i][2] * n[1]),
                         v[i][1] - r * (omega[i][2] * n[0] - omega[i][0] * n[2]),
                         v[i][2] - r * (omega[i][0] * n[1] - omega[i][1] * n[0])};
-        FastrestJGM::mindlin_step(h + FastrestJGM::STATE, n, vt, kt, mu * fn, update->setupflag ? 0.0 : dt, ft);
+        FastrestJGM::mindlin_step(h + W_XI, n, vt, kt, mu * fn, update->setupflag ? 0.0 : dt, ft);
         // torque of F_t applied at -r n: (-r n) x F_t
         torque[i][0] += -r * (n[1] * ft[2] - n[2] * ft[1]);
         torque[i][1] += -r * (n[2] * ft[0] - n[0] * ft[2]);

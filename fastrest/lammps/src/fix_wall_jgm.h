@@ -6,6 +6,7 @@
 #include "fix.h"
 
 #include "jgm_laws.h"
+#include "jgm_tangential.h"
 
 #include <string>
 #include <vector>
@@ -35,14 +36,17 @@ class FixWallJGM : public Fix {
   double memory_usage() override;
 
  private:
-  // per wall (lo, hi): the law's row and the tangential displacement
-  static constexpr int PER_WALL = FastrestJGM::STATE + 3, NV = 2 * PER_WALL;
+  // per wall (lo, hi): the law's row, the tangential displacement, the rolling displacement and
+  // the twist angle
+  static constexpr int W_XI = FastrestJGM::STATE, W_R = W_XI + 3, W_T = W_R + 3, PER_WALL = W_T + 1,
+                       NV = 2 * PER_WALL;
   double zlo, zhi;
   int has_lo, has_hi;
   FastrestJGM::Body wall;
   std::string unloading;
   double mu;    // tangential mindlin MU; < 0: tangential none
   bool mu_given;    // tangential given here; else the pair style's
+  FastrestJGM::Resistance res;    // rolling and twisting: the pair style's
   bool restored;    // histories read from a restart file, checked at the next set-up
   std::vector<double> restored_wall;    // the wall's material in the restart file (empty: none)
   FastrestJGM::Laws laws;

@@ -1,4 +1,5 @@
 #include "jgm_laws.h"
+#include "jgm_tangential.h"
 
 #include "comm.h"
 #include "error.h"
@@ -222,6 +223,44 @@ void request_laws(LAMMPS *lmp, const std::vector<LawRequest> &requests, const st
     MPI_Bcast(bytes.data(), static_cast<int>(sizes[1]), MPI_CHAR, 0, lmp->world);
   if (message.empty()) message = parse_laws(bytes, requests.size(), out);
   if (!message.empty()) lmp->error->all(FLERR, message);
+}
+
+int read_resistance(LAMMPS *lmp, const std::string &where, int narg, char **arg, int k, Resistance &res)
+{
+  std::string key = arg[k];
+  if (k + 1 >= narg) lmp->error->all(FLERR, "{}: '{}' needs a model: none or sds K GAMMA MU{}", where, key,
+                                     key == "twisting" ? " or marshall" : "");
+  std::string model = arg[k + 1];
+  if (model == "none") {
+    if (key == "rolling") res.roll_k = -1.0;
+    else res.twist = Resistance::NONE;
+    return k + 2;
+  }
+  if (model == "marshall" && key == "twisting") {
+    res.twist = Resistance::MARSHALL;
+    return k + 2;
+  }
+  if (model != "sds")
+    lmp->error->all(FLERR, "{}: {} model '{}' is not one of none, sds{}", where, key, model,
+                    key == "twisting" ? ", marshall" : "");
+  if (k + 4 >= narg) lmp->error->all(FLERR, "{}: '{} sds' needs K GAMMA MU", where, key);
+  const char *names[3] = {"K", "GAMMA", "MU"};
+  double v[3];
+  for (int m = 0; m < 3; ++m) {
+    v[m] = finite_number(lmp, where, fmt::format("{} {}", key, names[m]).c_str(), arg[k + 2 + m]);
+    if (!(v[m] >= 0.0)) lmp->error->all(FLERR, "{}: {} {} = {} must be >= 0", where, key, names[m], arg[k + 2 + m]);
+  }
+  if (key == "rolling") {
+    res.roll_k = v[0];
+    res.roll_gamma = v[1];
+    res.roll_mu = v[2];
+  } else {
+    res.twist = Resistance::SDS;
+    res.twist_k = v[0];
+    res.twist_gamma = v[1];
+    res.twist_mu = v[2];
+  }
+  return k + 5;
 }
 
 }    // namespace FastrestJGM

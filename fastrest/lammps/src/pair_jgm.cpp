@@ -68,6 +68,7 @@ void PairJGM::settings(int narg, char **arg)
 {
   unloading_model = "jcg";
   mu = -1.0;
+  res = FastrestJGM::Resistance();
   int k = 0;
   while (k < narg) {
     std::string key = arg[k];
@@ -93,10 +94,16 @@ void PairJGM::settings(int narg, char **arg)
       } else {
         error->all(FLERR, "pair_style jgm: tangential model '{}' is not none or mindlin", m);
       }
+    } else if (key == "rolling" || key == "twisting") {
+      k = FastrestJGM::read_resistance(lmp, "pair_style jgm", narg, arg, k, res);
     } else {
-      error->all(FLERR, "pair_style jgm: unknown keyword '{}' (expected unloading or tangential)", key);
+      error->all(FLERR, "pair_style jgm: unknown keyword '{}' (expected unloading, tangential, rolling or twisting)",
+                 key);
     }
   }
+  if (res.twist == FastrestJGM::Resistance::MARSHALL && mu < 0.0)
+    error->all(FLERR, "pair_style jgm: 'twisting marshall' takes its stiffness and limit from the tangential model: "
+                      "give 'tangential mindlin MU' too");
 }
 
 void PairJGM::coeff(int narg, char **arg)
@@ -391,12 +398,19 @@ void PairJGM::compute(int eflag, int vflag)
         // set-up: the force of the displacement as it is (dt 0), that of the step that left it
         elastic += FastrestJGM::mindlin_step(h + H_XI, n, vt, kt, mu * fn, setup ? 0.0 : dt, ft);
       }
+      double mt[3] = {0.0, 0.0, 0.0};
+      if (res.any()) {    // rolling and twisting torques: mt on i, -mt on j
+        double relrot[3] = {omega[i][0] - omega[j][0], omega[i][1] - omega[j][1], omega[i][2] - omega[j][2]};
+        double a = FastrestJGM::contact_radius(laws, law, h, s, reff);
+        elastic += FastrestJGM::resistance_step(res, h + H_R, h + H_T, relrot, n, reff, fn, 8.0 * law.g_eff * a *
+                                                from_pressure, a, mu, setup ? 0.0 : dt, mt);
+      }
       double fv[3] = {fn * n[0] + ft[0], fn * n[1] + ft[1], fn * n[2] + ft[2]};
       double c[3], ti[3], tj[3];
       cross(n, ft, c);
       for (int k = 0; k < 3; ++k) {    // F_t at the contact point, -li n from i and +lj n from j
-        ti[k] = -li * c[k];
-        tj[k] = -lj * c[k];
+        ti[k] = -li * c[k] + mt[k];
+        tj[k] = -lj * c[k] - mt[k];
       }
       // energy the contact takes from the atoms over the step: minus the trapezoid work of its
       // force and torques with the half-step velocities velocity Verlet moves the atoms by; summed
@@ -405,14 +419,16 @@ void PairJGM::compute(int eflag, int vflag)
       if (!setup) {
         double work = 0.0;
         for (int k = 0; k < 3; ++k)
-          work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) - (ri * h[H_Q] * h[H_C + k] - ti[k]) * omega[i][k] -
-              (radius[j] * h[H_Q] * h[H_C + k] - tj[k]) * omega[j][k];
+          work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) +
+              (-ri * h[H_Q] * h[H_C + k] + h[H_M + k] + ti[k]) * omega[i][k] +
+              (-radius[j] * h[H_Q] * h[H_C + k] - h[H_M + k] + tj[k]) * omega[j][k];
         h[H_W] -= 0.5 * dt * work;
       }
       h[H_Q] = q;
       for (int k = 0; k < 3; ++k) {
         h[H_F + k] = fv[k];
         h[H_C + k] = c[k];
+        h[H_M + k] = mt[k];
       }
       dissipated += weight * (h[H_W] - elastic);
       stored += weight * elastic;
@@ -445,8 +461,10 @@ double PairJGM::contact_state(const double *h, const FastrestJGM::Law &law, doub
   double fn = p * law.p_c1 * reff * reff * from_pressure;
   double along = h[H_F] * n[0] + h[H_F + 1] * n[1] + h[H_F + 2] * n[2];
   for (int k = 0; k < 3; ++k) ft[k] = mu >= 0.0 ? h[H_F + k] - along * n[k] : 0.0;
-  double kt = mu >= 0.0 ? FastrestJGM::mindlin_stiffness(laws, law, copy, s, reff) * from_pressure : 0.0;
-  if (kt > 0.0) elastic += 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]) / kt;
+  double a = FastrestJGM::contact_radius(laws, law, copy, s, reff);
+  double kt = 8.0 * law.g_eff * a * from_pressure;
+  if (mu >= 0.0 && kt > 0.0) elastic += 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]) / kt;
+  elastic += FastrestJGM::resistance_energy(res, h + H_R, h[H_T], kt, a, mu);
   return fn;
 }
 

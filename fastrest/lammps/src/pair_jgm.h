@@ -6,6 +6,7 @@
 #include "pair.h"
 
 #include "jgm_laws.h"
+#include "jgm_tangential.h"
 
 #include <string>
 #include <vector>
@@ -15,10 +16,12 @@ namespace LAMMPS_NS {
 class PairJGM : public Pair {
  public:
   // [0, STATE): the law's row; H_W: energy taken; H_Q: r/(R_i + R_j) and H_C: n x F_t at the last
-  // step (the torques' lever and direction, alike seen from i or j); then vectors from j to i
-  // (negated for j): H_F the force on i at the last step, H_XI the tangential displacement
-  static constexpr int H_W = FastrestJGM::STATE, H_Q = H_W + 1, H_C = H_Q + 1, H_F = H_C + 3, H_XI = H_F + 3,
-                       NHIST = H_XI + 3;
+  // step (the torques' lever and direction, alike seen from i or j); H_R the rolling displacement
+  // and H_T the twist angle (alike seen from i or j); then vectors from j to i (negated for j): H_F
+  // the force on i at the last step, H_XI the tangential displacement, H_M the rolling and twisting
+  // torque on i at the last step
+  static constexpr int H_W = FastrestJGM::STATE, H_Q = H_W + 1, H_C = H_Q + 1, H_R = H_C + 3, H_T = H_R + 3,
+                       H_F = H_T + 1, H_XI = H_F + 3, H_M = H_XI + 3, NHIST = H_M + 3;
   //! single()'s extra values (compute pair/local p1..p7): normal force, |tangential force|, w*,
   //! w_max*, energy dissipated so far, contact radius, elastic energy held
   static constexpr int NSINGLE = 7;
@@ -41,10 +44,12 @@ class PairJGM : public Pair {
   const FastrestJGM::Body *material(int t) const;
   const std::string &unloading() const { return unloading_model; }
   double friction() const { return mu; }
+  const FastrestJGM::Resistance &resistance() const { return res; }
 
  private:
   std::string unloading_model;
   double mu;    // Coulomb friction coefficient of tangential mindlin; < 0: tangential none
+  FastrestJGM::Resistance res;    // rolling and twisting
   std::vector<FastrestJGM::Body> mat;    // per type
   std::vector<int> mat_set;
   FastrestJGM::Laws laws;
