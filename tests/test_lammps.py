@@ -376,11 +376,10 @@ def test_damaged_law_files_are_refused(tmp_path, damage, message):
     """The plugin reads the laws fastrest writes as hostile bytes: each damage is a LAMMPS error
     naming it, in a subprocess with a time limit (never a crash or a hang)."""
     import os
-    import subprocess
     import sys
 
     from fastrest.lammps.laws import law_bytes, read_requests
-    from lammps_run import BIN
+    from lammps_run import BIN, run_limited
 
     good = tmp_path / "req.txt"
     good.write_text("spheres 200e9 0.3 1e9 0 200e9 0.3 1e9 0 types_1_1\n")
@@ -402,7 +401,7 @@ def test_damaged_law_files_are_refused(tmp_path, damage, message):
                        f"shutil.copyfile({str(tmp_path / 'laws.bin')!r}, sys.argv[sys.argv.index('--out') + 1])\n"))
     fake.chmod(0o755)
     (tmp_path / "in.lmp").write_text(_one_pair().replace("@PLUGIN@", plugin()))
-    run = subprocess.run([str(BIN / "lmp"), "-in", "in.lmp", "-log", "none", "-nocite"], cwd=tmp_path,
-                         capture_output=True, text=True, timeout=120, env=dict(os.environ, FASTREST_PYTHON=str(fake)))
-    out = (run.stdout + run.stderr).replace(str(fake), "FAKE")
+    run = run_limited([str(BIN / "lmp"), "-in", "in.lmp", "-log", "none", "-nocite"], tmp_path, 120,
+                      dict(os.environ, FASTREST_PYTHON=str(fake)))
+    out = (run.stdout + run.stderr).decode(errors="replace").replace(str(fake), "FAKE")
     assert run.returncode != 0 and "ERROR" in out and message in out, out[-1500:]

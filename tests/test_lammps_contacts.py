@@ -217,3 +217,14 @@ def test_hybrid_with_granular(tmp_path):
     v = read_dump(tmp_path / "final.dump")[:, 4]
     e = np.array([(v[2 * k + 1] - v[2 * k]) / V for k, (_, _, V) in enumerate(pairs)])
     assert abs(e[0] - imp.e(speeds[0])) <= 1e-5 and np.allclose(e[1:], 0.6, atol=1e-3), e
+
+
+def test_more_material_pairs_than_laws_is_refused(tmp_path):
+    """91 types of 91 materials: 4186 distinct pairs, past the 4096 laws one run builds: an error
+    that says so and what to do, before fastrest is asked."""
+    n = 91
+    coeffs = "\n".join(f"pair_coeff {t} {t} {200e9 + t * 1e9!r} 0.3 1e9" for t in range(1, n + 1))
+    script = pairs_script({1: STEEL}, [(1, 1, 1.0)], R, RHO, 1e-8, 10).replace("create_box 1 box", f"create_box {n} box")
+    script = script.replace(f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}", coeffs)
+    rc, out = lmp(script, tmp_path, check=False)
+    assert rc != 0 and "4186 distinct material pairs need a contact law each" in out and "at most 4096" in out, out[-800:]

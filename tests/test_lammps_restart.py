@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import fastrest
-from lammps_run import BIN, hertz_time, lmp, pairs_script, plugin, read_dump
+from lammps_run import BIN, hertz_time, lmp, pairs_script, plugin, read_dump, run_limited
 
 pytestmark = pytest.mark.lammps
 
@@ -119,8 +119,7 @@ def _reader_alone_fails(folder):
     """Whether LAMMPS's read_restart alone, without the plugin, fails or hangs on damaged.restart."""
     (folder / "alone.lmp").write_text("read_restart damaged.restart\n")
     try:
-        alone = subprocess.run([str(BIN / "lmp"), "-in", "alone.lmp", "-log", "none", "-nocite"], cwd=folder,
-                               capture_output=True, timeout=15)
+        alone = run_limited([str(BIN / "lmp"), "-in", "alone.lmp", "-log", "none", "-nocite"], folder, 15)
     except subprocess.TimeoutExpired:
         return True
     return alone.returncode != 0
@@ -151,8 +150,8 @@ def test_random_damage_never_crashes(tmp_path, restart):
         (tmp_path / "damaged.restart").write_bytes(bytes(data))
         (tmp_path / "final.dump").unlink(missing_ok=True)
         try:
-            run = subprocess.run([str(BIN / "lmp"), "-in", str(script), "-log", "none", "-nocite"], cwd=tmp_path,
-                                 capture_output=True, timeout=30, env=dict(os.environ, OMP_NUM_THREADS="1"))
+            run = run_limited([str(BIN / "lmp"), "-in", str(script), "-log", "none", "-nocite"], tmp_path, 30,
+                              dict(os.environ, OMP_NUM_THREADS="1"))
         except subprocess.TimeoutExpired:
             assert _reader_alone_fails(tmp_path), k  # LAMMPS's reader hangs on its own
             seen["lammps reader"] += 1
