@@ -131,6 +131,20 @@ def pairs_script(materials, pairs, R, rho, dt, steps, *, unloading="jcg", drift=
     return "\n".join(lines) + "\n"
 
 
+def gas_lines(n, fraction, pair_style, material, rho, dt, r=1e-3):
+    """The head of a granular-gas input: ``n`` spheres of radius ``r`` (m) at volume ``fraction`` in
+    a periodic cube, random speeds (``velocity create 1e18 12345``), ``pair_style`` with type 1 of
+    ``material`` (E, nu, Sy, ...), fix nve/sphere, time step ``dt``; the lines to add follow."""
+    box = (n * 4 / 3 * np.pi * r ** 3 / fraction) ** (1 / 3)
+    E, nu, Sy = material[:3]
+    return ["units si", "atom_style sphere", "boundary p p p", f"region box block 0 {box!r} 0 {box!r} 0 {box!r}",
+            "create_box 1 box", f"create_atoms 1 random {n} 4321 NULL overlap {2.05 * r!r} maxtry 1000",
+            f"set atom * diameter {2 * r!r}", f"set atom * density {rho!r}",
+            "velocity all create 1e18 12345 dist gaussian mom yes", "plugin load @PLUGIN@", pair_style,
+            f"pair_coeff 1 1 {E!r} {nu!r} {Sy!r}", f"neighbor {0.2 * r!r} bin", "comm_modify vel yes",
+            "fix 1 all nve/sphere", f"timestep {float(dt)!r}"]
+
+
 def read_dump(path):
     """(id, x, y, z, vx, vy, vz) columns of a ``write_dump ... custom id x y z vx vy vz`` file."""
     text = pathlib.Path(path).read_text().splitlines()

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import fastrest
-from lammps_run import hertz_time, lmp, pairs_script, plugin, read_dump
+from lammps_run import gas_lines, hertz_time, lmp, pairs_script, plugin, read_dump
 
 pytestmark = pytest.mark.lammps
 
@@ -236,15 +236,7 @@ def test_granular_gas_energy_balance(tmp_path, np_, tangential):
     imp = _impact(STEEL, STEEL)
     c = imp.critical_values()
     dt = hertz_time(0.5 * 4 / 3 * np.pi * r ** 3 * RHO, r / 2, c["E_eff"], 3.0) / 200
-    box = (1000 * 4 / 3 * np.pi * r ** 3 / 0.25) ** (1 / 3)
-    script = "\n".join([
-        "units si", "atom_style sphere", "boundary p p p", f"region box block 0 {box!r} 0 {box!r} 0 {box!r}",
-        "create_box 1 box", f"create_atoms 1 random 1000 4321 NULL overlap {2.05 * r!r} maxtry 1000",
-        f"set atom * diameter {2 * r!r}", f"set atom * density {RHO!r}",
-        "velocity all create 1e18 12345 dist gaussian mom yes", "plugin load @PLUGIN@",
-        f"pair_style jgm unloading jcg tangential {tangential}",
-        f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}",
-        f"neighbor {0.2 * r!r} bin", "comm_modify vel yes", "fix 1 all nve/sphere", f"timestep {float(dt)!r}",
+    script = "\n".join(gas_lines(1000, 0.25, f"pair_style jgm unloading jcg tangential {tangential}", STEEL, RHO, dt, r) + [
         "compute pj all pair jgm", "compute kt all ke", "compute kr all erotate/sphere",
         "variable ke equal c_kt+c_kr",
         "thermo_style custom step v_ke c_pj[1] c_pj[2]",

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import fastrest
-from lammps_run import hertz_time, lmp, pairs_script, read_dump, results, wall_script
+from lammps_run import gas_lines, hertz_time, lmp, pairs_script, read_dump, results, wall_script
 
 pytestmark = pytest.mark.lammps
 
@@ -71,14 +71,8 @@ def test_per_atom_energies_add_up_in_a_gas(tmp_path):
     r = 1e-3
     c = _imp().critical_values()
     dt = hertz_time(0.5 * 4 / 3 * np.pi * r ** 3 * RHO, r / 2, c["E_eff"], 3.0) / 100
-    box = (300 * 4 / 3 * np.pi * r ** 3 / 0.3) ** (1 / 3)
-    script = "\n".join([
-        "units si", "atom_style sphere", "boundary p p p", f"region box block 0 {box!r} 0 {box!r} 0 {box!r}",
-        "create_box 1 box", f"create_atoms 1 random 300 4321 NULL overlap {2.05 * r!r} maxtry 1000",
-        f"set atom * diameter {2 * r!r}", f"set atom * density {RHO!r}",
-        "velocity all create 1e18 12345 dist gaussian mom yes", "plugin load @PLUGIN@", FRICTION,
-        f"pair_coeff 1 1 {STEEL[0]!r} {STEEL[1]!r} {STEEL[2]!r}", f"neighbor {0.2 * r!r} bin", "fix 1 all nve/sphere",
-        f"timestep {float(dt)!r}", "compute pj all pair jgm", "compute ja all jgm/atom",
+    script = "\n".join(gas_lines(300, 0.3, FRICTION, STEEL, RHO, dt, r) + [
+        "compute pj all pair jgm", "compute ja all jgm/atom",
         "compute pl all pair/local p3 cutoff radius", "compute a1 all reduce sum c_ja[1]",
         "compute a2 all reduce sum c_ja[2]", "compute a3 all reduce sum c_ja[3]",
         "thermo_style custom step c_pj[1] c_pj[2] c_a1 c_a2 c_a3", "thermo 1000", "run 3000",

@@ -120,28 +120,28 @@ def test_a_changed_material_for_open_contacts_is_refused(tmp_path, restart):
     lmp(_continue(path, dt, pair=PAIR.replace("0.3", "0.5")), tmp_path)
 
 
-def _reader_alone_fails(folder):
-    """Whether LAMMPS's read_restart alone, without the plugin, fails or hangs on damaged.restart."""
-    (folder / "alone.lmp").write_text("read_restart damaged.restart\n")
+def _fails_without_plugin(folder, name, script):
+    """Whether LAMMPS, without the plugin, fails or hangs on ``script`` (written to ``name`` in
+    ``folder``)."""
+    (folder / name).write_text(script)
     try:
-        alone = run_limited([str(BIN / "lmp"), "-in", "alone.lmp", "-log", "none", "-nocite"], folder, 15)
-    except subprocess.TimeoutExpired:
-        return True
-    return alone.returncode != 0
-
-
-def _granular_run_fails(folder, dt):
-    """Whether the continuation of damaged.restart with pair_style granular, without the plugin,
-    fails or hangs too."""
-    script = _continue("damaged.restart", dt, steps=50).replace("plugin load @PLUGIN@\n", "")
-    script = script.replace(PAIR, "pair_style granular").replace(
-        COEFF, "pair_coeff * * hertz/material 2e11 0.5 0.3 tangential linear_nohistory 0 0 damping coeff_restitution")
-    (folder / "granular.lmp").write_text(script)
-    try:
-        run = run_limited([str(BIN / "lmp"), "-in", "granular.lmp", "-log", "none", "-nocite"], folder, 15)
+        run = run_limited([str(BIN / "lmp"), "-in", name, "-log", "none", "-nocite"], folder, 15)
     except subprocess.TimeoutExpired:
         return True
     return run.returncode != 0
+
+
+def _reader_alone_fails(folder):
+    """Whether LAMMPS's read_restart alone fails or hangs on damaged.restart."""
+    return _fails_without_plugin(folder, "alone.lmp", "read_restart damaged.restart\n")
+
+
+def _granular_run_fails(folder, dt):
+    """Whether the continuation of damaged.restart with pair_style granular fails or hangs too."""
+    script = _continue("damaged.restart", dt, steps=50).replace("plugin load @PLUGIN@\n", "")
+    script = script.replace(PAIR, "pair_style granular").replace(
+        COEFF, "pair_coeff * * hertz/material 2e11 0.5 0.3 tangential linear_nohistory 0 0 damping coeff_restitution")
+    return _fails_without_plugin(folder, "granular.lmp", script)
 
 
 def test_random_damage_never_crashes(tmp_path, restart):

@@ -1,5 +1,7 @@
 #include "fix_jgm_history.h"
 
+#include "jgm_laws.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -72,9 +74,7 @@ void FixJGMHistory::to_atoms()
       int *jlist = list->firstneigh[i];
       const double *v = values(i);
       for (int jj = 0; jj < list->numneigh[i]; ++jj, v += nvalues) {
-        bool active = false;
-        for (int k = 0; k < nvalues; ++k) active = active || v[k] != 0.0;
-        if (!active) continue;
+        if (!FastrestJGM::row_open(v, nvalues)) continue;
         int j = jlist[jj] & NEIGHMASK;
         add_partner(i, static_cast<double>(tag[j]), v, false);
         if (j < nlocal) add_partner(j, static_cast<double>(tag[i]), v, true);
@@ -238,19 +238,13 @@ void FixJGMHistory::unpack_restart(int nlocal, int nth)
   double *extra = atom->extra[nlocal];
   const double width = atom->nextra_store;
   tagint self = atom->tag[nlocal];
-  double m = 0.0;
-  for (int k = 0; k < nth; ++k) {
-    double size = m < width ? extra[static_cast<int>(m)] : -1.0;
-    if (!(size >= 1.0 && m + size <= width) || size != std::floor(size))
-      error->one(FLERR, "fix jgm/history: restart file holds a damaged record for atom {}", self);
-    m += size;
-  }
-  double size = m < width ? extra[static_cast<int>(m)] : -1.0;
+  int at = FastrestJGM::restart_record(extra, atom->nextra_store, nth);
+  if (at < 0) error->one(FLERR, "fix jgm/history: restart file holds a damaged record for atom {}", self);
+  double m = at, size = extra[at];
   double n = size - 2.0;
   if (!(n >= 0.0 && m + size <= width) || n != std::floor(n) || std::fmod(n, 1.0 + nvalues) != 0.0)
     error->one(FLERR, "fix jgm/history: restart file holds a bad contact list for atom {} (its length is "
                       "not a whole number of contacts within the record)", self);
-  int at = static_cast<int>(m);
   if (!std::isfinite(extra[at + 1]) || extra[at + 1] < 0.0)
     error->one(FLERR, "fix jgm/history: restart file holds a dissipated energy for atom {} that is not finite "
                       "and >= 0", self);

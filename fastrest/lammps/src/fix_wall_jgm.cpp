@@ -103,8 +103,7 @@ void FixWallJGM::init()
   if (!restored_wall.empty()) {
     const std::vector<double> &o = restored_wall;
     bool open = false;
-    for (int i = 0; i < atom->nlocal && !open; ++i)
-      for (int k = 0; k < NV; ++k) open = open || hist[i][k] != 0.0;
+    for (int i = 0; i < atom->nlocal && !open; ++i) open = FastrestJGM::row_open(hist[i], NV);
     int any = 0, mine = open;
     MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
     if (any && (o[0] != wall.E || o[1] != wall.nu || o[2] != wall.Sy || o[3] != wall.Et ||
@@ -141,9 +140,7 @@ void FixWallJGM::setup(int vflag)
     for (int i = 0; i < atom->nlocal; ++i)
       for (int side = 0; side < 2; ++side) {
         const double *h = hist[i] + side * PER_WALL;
-        bool active = false;
-        for (int k = 0; k < PER_WALL; ++k) active = active || h[k] != 0.0;
-        if (!active) continue;
+        if (!FastrestJGM::row_open(h, PER_WALL)) continue;
         std::string why = FastrestJGM::row_problem(laws, law_of[atom->type[i]], h);
         for (int k = FastrestJGM::STATE; k < PER_WALL && why.empty(); ++k)
           if (!std::isfinite(h[k])) why = "a tangential, rolling or twisting value is not finite";
@@ -209,7 +206,7 @@ void FixWallJGM::post_force(int)
       double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
       double ft[3] = {0.0, 0.0, 0.0};
       double s = FastrestJGM::elastic_fraction(h, w), a = FastrestJGM::contact_radius(laws, law, h, s, r);
-      double kt = 8.0 * law.g_eff * a * from_pressure;
+      double kt = FastrestJGM::tangential_stiffness(law, a) * from_pressure;
       if (res.any()) {    // as pair_style jgm, the wall at rest and the sphere's radius the reduced one
         double mt[3];
         FastrestJGM::resistance_step(res, h + W_R, h + W_T, omega[i], n, r, fn, kt, a, mu,
@@ -276,19 +273,12 @@ int FixWallJGM::pack_restart(int i, double *buf)
 void FixWallJGM::unpack_restart(int nlocal, int nth)
 {
   double **extra = atom->extra;
-  int m = 0;
-  for (int k = 0; k < nth; ++k) {
-    double size = m < atom->nextra_store ? extra[nlocal][m] : -1.0;
-    if (!(size >= 1.0 && m + size <= atom->nextra_store))
-      error->one(FLERR, "fix wall/jgm: restart file holds a damaged record for atom {}", atom->tag[nlocal]);
-    m += static_cast<int>(size);
-  }
+  int m = FastrestJGM::restart_record(extra[nlocal], atom->nextra_store, nth);
+  if (m < 0) error->one(FLERR, "fix wall/jgm: restart file holds a damaged record for atom {}", atom->tag[nlocal]);
   if (m + NV + 1 > atom->nextra_store || extra[nlocal][m] != NV + 1)
     error->one(FLERR, "fix wall/jgm: restart file holds a bad history for atom {}", atom->tag[nlocal]);
-  for (int k = 0; k < NV; ++k) {
-    hist[nlocal][k] = extra[nlocal][m + 1 + k];
-    restored = restored || hist[nlocal][k] != 0.0;
-  }
+  for (int k = 0; k < NV; ++k) hist[nlocal][k] = extra[nlocal][m + 1 + k];
+  restored = restored || FastrestJGM::row_open(hist[nlocal], NV);
 }
 
 int FixWallJGM::size_restart(int) { return NV + 1; }

@@ -51,6 +51,27 @@ double finite_number(LAMMPS_NS::LAMMPS *lmp, const std::string &where, const cha
 Body read_body(LAMMPS_NS::LAMMPS *lmp, const std::string &where, const char *E, const char *nu, const char *Sy,
                const char *Et);
 
+//! Offset of the nth fix's record among one atom's `width` restart values (each record led by its
+//! length), or -1 where a length before it is not a whole number >= 1 within them.
+inline int restart_record(const double *extra, int width, int nth)
+{
+  double m = 0.0;
+  for (int k = 0; k < nth; ++k) {
+    double size = m < width ? extra[static_cast<int>(m)] : -1.0;
+    if (!(size >= 1.0 && m + size <= width) || size != std::floor(size)) return -1;
+    m += size;
+  }
+  return m < width ? static_cast<int>(m) : -1;
+}
+
+//! Whether a history row of n values is in use (a closed or virgin contact's is all zeros).
+inline bool row_open(const double *row, int n)
+{
+  for (int k = 0; k < n; ++k)
+    if (row[k] != 0.0) return true;
+  return false;
+}
+
 //! Whether a contact at w* with history row `state` has ended: the overlap and the force both gone
 //! (w* <= 0 and w* <= w_res*; w_res* < 0 just above w* = 1.9 for nu < 0.32, where the unloading
 //! branch still pushes at zero overlap).

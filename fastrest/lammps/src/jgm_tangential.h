@@ -27,11 +27,8 @@ inline double contact_radius(const Laws &laws, const Law &law, const double *sta
   return law.a_c1 * reff * std::sqrt(a_star > 0.0 ? a_star : 0.0);
 }
 
-//! Mindlin's stiffness k_t = 8 G* a (pressure x length) on the contact radius of contact_radius.
-inline double mindlin_stiffness(const Laws &laws, const Law &law, const double *state, double s, double reff)
-{
-  return 8.0 * law.g_eff * contact_radius(laws, law, state, s, reff);
-}
+//! Mindlin's no-slip stiffness k_t = 8 G* a (pressure x length) on contact radius a.
+inline double tangential_stiffness(const Law &law, double a) { return 8.0 * law.g_eff * a; }
 
 /* n: unit normal (from the other body to this one); vt: sliding velocity of the contact point
    (this body's minus the other's, any normal part is removed); xi: the displacement, updated;

@@ -237,9 +237,7 @@ void PairJGM::check_restored_rows()
     int *jlist = list->firstneigh[i];
     const double *h = history->values(i);
     for (int jj = 0; jj < list->numneigh[i]; ++jj, h += NHIST) {
-      bool active = false;
-      for (int k = 0; k < NHIST; ++k) active = active || h[k] != 0.0;
-      if (!active) continue;
+      if (!FastrestJGM::row_open(h, NHIST)) continue;
       int j = jlist[jj] & NEIGHMASK;
       std::string why = FastrestJGM::row_problem(laws, law_of[type[i] * stride + type[j]], h);
       if (why.empty() && !(h[H_Q] > 0.0 && h[H_Q] < 2.0)) why = "its lever fraction is not in (0, 2)";
@@ -388,8 +386,10 @@ void PairJGM::compute(int eflag, int vflag)
       double ft[3] = {0.0, 0.0, 0.0};
       // lever arms of the contact point, li + lj = r: torques then conserve angular momentum
       double q = r / radsum, li = ri * q, lj = radius[j] * q;
+      // the contact radius, for Mindlin's k_t = 8 G* a and for rolling and twisting
+      double a = (mu >= 0.0 || res.any()) ? FastrestJGM::contact_radius(laws, law, h, s, reff) : 0.0;
+      double kt = FastrestJGM::tangential_stiffness(law, a) * from_pressure;
       if (mu >= 0.0) {
-        double kt = FastrestJGM::mindlin_stiffness(laws, law, h, s, reff) * from_pressure;
         double spin[3] = {li * omega[i][0] + lj * omega[j][0], li * omega[i][1] + lj * omega[j][1],
                           li * omega[i][2] + lj * omega[j][2]};
         double turn[3];
@@ -401,9 +401,8 @@ void PairJGM::compute(int eflag, int vflag)
       double mt[3] = {0.0, 0.0, 0.0};
       if (res.any()) {    // rolling and twisting torques: mt on i, -mt on j
         double relrot[3] = {omega[i][0] - omega[j][0], omega[i][1] - omega[j][1], omega[i][2] - omega[j][2]};
-        double a = FastrestJGM::contact_radius(laws, law, h, s, reff);
-        elastic += FastrestJGM::resistance_step(res, h + H_R, h + H_T, relrot, n, reff, fn, 8.0 * law.g_eff * a *
-                                                from_pressure, a, mu, setup ? 0.0 : dt, mt);
+        elastic += FastrestJGM::resistance_step(res, h + H_R, h + H_T, relrot, n, reff, fn, kt, a, mu,
+                                                setup ? 0.0 : dt, mt);
       }
       double fv[3] = {fn * n[0] + ft[0], fn * n[1] + ft[1], fn * n[2] + ft[2]};
       double c[3], ti[3], tj[3];
@@ -462,27 +461,23 @@ double PairJGM::contact_state(const double *h, const FastrestJGM::Law &law, doub
   double along = h[H_F] * n[0] + h[H_F + 1] * n[1] + h[H_F + 2] * n[2];
   for (int k = 0; k < 3; ++k) ft[k] = mu >= 0.0 ? h[H_F + k] - along * n[k] : 0.0;
   double a = FastrestJGM::contact_radius(laws, law, copy, s, reff);
-  double kt = 8.0 * law.g_eff * a * from_pressure;
+  double kt = FastrestJGM::tangential_stiffness(law, a) * from_pressure;
   if (mu >= 0.0 && kt > 0.0) elastic += 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]) / kt;
   elastic += FastrestJGM::resistance_energy(res, h + H_R, h[H_T], kt, a, mu);
   return fn;
 }
 
 // The history row of local atom i and atom j in the pair's list (under i, or under j if j is local:
-// then flipped), or nullptr
-const double *PairJGM::row_of(int i, int j, bool &flipped)
+// then its vectors are negated; single() reads magnitudes only), or nullptr
+const double *PairJGM::row_of(int i, int j)
 {
-  flipped = false;
   if (!list || !history || i >= atom->nlocal) return nullptr;
   for (int side = 0; side < 2; ++side) {
     int a = side == 0 ? i : j, b = side == 0 ? j : i;
     if (a >= atom->nlocal) break;
     int num = list->numneigh[a], *jlist = list->firstneigh[a];
     for (int jj = 0; jj < num; ++jj)
-      if ((jlist[jj] & NEIGHMASK) == b) {
-        flipped = side == 1;
-        return history->values(a) + static_cast<size_t>(jj) * NHIST;
-      }
+      if ((jlist[jj] & NEIGHMASK) == b) return history->values(a) + static_cast<size_t>(jj) * NHIST;
   }
   return nullptr;
 }
@@ -493,8 +488,7 @@ double PairJGM::single(int i, int j, int itype, int jtype, double rsq, double, d
 {
   fforce = 0.0;
   for (int k = 0; k < NSINGLE; ++k) svector[k] = 0.0;
-  bool flipped;
-  const double *h = row_of(i, j, flipped);
+  const double *h = row_of(i, j);
   double *radius = atom->radius;
   double radsum = radius[i] + radius[j];
   if (!h || (rsq >= radsum * radsum && !(h[0] > 0.0)) || rsq <= 0.0) return 0.0;

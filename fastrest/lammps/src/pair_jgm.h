@@ -64,7 +64,7 @@ class PairJGM : public Pair {
   std::vector<double> model_record() const;
   void check_restored_model();
   void check_restored_rows();
-  const double *row_of(int i, int j, bool &flipped);
+  const double *row_of(int i, int j);
   //! Normal force (force units) and elastic energy held of the contact with row h at w*; ft the
   //! tangential force from the row's last step (its part normal to n removed).
   double contact_state(const double *h, const FastrestJGM::Law &law, double w, double reff, const double *n,
