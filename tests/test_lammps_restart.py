@@ -46,8 +46,8 @@ def _continue(path, dt, pair=PAIR, coeff=COEFF, steps=300):
             "write_dump all custom final.dump id x y z vx vy vz modify sort id format float %.17g\n")
 
 
-#: Values of a contact's history row (PairJGM::NHIST in pair_jgm.h).
-NHIST = 22
+#: Values of a contact's history row with friction, no rolling or twisting (PairJGM::NHIST_SLIDE).
+NHIST = 15
 
 
 def _rows(data):
@@ -197,3 +197,39 @@ def test_random_damage_never_crashes(tmp_path, restart):
             assert not np.isnan(final[:, 4:7]).any(), k
             seen["ran"] += 1
     assert seen["error"] >= 12 and seen["ran"] >= 3, seen
+
+
+@pytest.mark.parametrize("before,after", [("", " rolling sds 1e6 0 0.05 twisting sds 10 0 1e-3"),
+                                          (" rolling sds 1e6 0 0.05 twisting sds 10 0 1e-3", "")])
+def test_rolling_switched_at_a_restart_keeps_the_open_contacts(tmp_path, before, after):
+    """Head-on pairs (no spin: rolling and twisting exert nothing) written mid-contact with rolling
+    and twisting off and read back with them on, or the reverse: the history rows change length
+    (PairJGM::nhist) and keep their normal and sliding state, so the run ends as the uninterrupted
+    one does. A contact whose history was lost would restart as a new, elastic one."""
+    m = fastrest.Material(*STEEL[:3], rho=RHO)
+    imp = fastrest.Impact.two_spheres(m, R, m, R)
+    speeds = [10 * imp.V_c, 40 * imp.V_c]
+    dt = hertz_time(imp.critical_values()["mass"], R / 2, imp.critical_values()["E_eff"], speeds[0]) / 200
+    pairs = [(1, 1, float(V)) for V in speeds]
+    steps, half = 400, 120
+
+    def head(extra, **kw):
+        return pairs_script({1: STEEL}, pairs, R, RHO, dt, steps, **kw).replace(
+            "pair_style jgm unloading jcg", PAIR + extra)
+    whole = tmp_path / "whole"
+    whole.mkdir()
+    lmp(head(after), whole)
+    first = tmp_path / "first"
+    first.mkdir()
+    lmp(head(before, run_lines=[f"run {half}", "write_restart mid.restart"]), first)
+    mid = read_dump(first / "final.dump")
+    assert np.all(np.abs(mid[1::2, 1] - mid[0::2, 1]) < 2 * R)  # both pairs in contact there
+    again = tmp_path / "again"
+    again.mkdir()
+    lmp(_continue(first / "mid.restart", dt, pair=PAIR + after, steps=steps - half), again)
+    assert np.allclose(read_dump(again / "final.dump"), read_dump(whole / "final.dump"), rtol=1e-12, atol=0)
+    # the same switch between two runs of one input
+    once = tmp_path / "once"
+    once.mkdir()
+    lmp(head(before, run_lines=[f"run {half}", PAIR + after, COEFF, f"run {steps - half}"]), once)
+    assert np.allclose(read_dump(once / "final.dump"), read_dump(whole / "final.dump"), rtol=1e-12, atol=0)

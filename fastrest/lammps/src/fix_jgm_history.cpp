@@ -17,11 +17,12 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-// first value of the global restart record: which layout follows
-static constexpr double MODEL_MAGIC = 20261201.0;
+// first value of the global restart record: which layout follows ([magic, values per contact,
+// length of the model, the model])
+static constexpr double MODEL_MAGIC = 20261202.0;
 
 FixJGMHistory::FixJGMHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), restored_rows(false), nvalues(0), flip_lo(0), flip_hi(0), list(nullptr), current(false)
+    Fix(lmp, narg, arg), restored_rows(false), nvalues(0), flip_lo(0), flip_hi(0), restored_nvalues(0), list(nullptr), current(false)
 {
   // fix ID group jgm/history NVALUES FLIP_LO FLIP_HI
   if (narg != 6)
@@ -30,9 +31,8 @@ FixJGMHistory::FixJGMHistory(LAMMPS *lmp, int narg, char **arg) :
   nvalues = utils::inumeric(FLERR, arg[3], false, lmp);
   flip_lo = utils::inumeric(FLERR, arg[4], false, lmp);
   flip_hi = utils::inumeric(FLERR, arg[5], false, lmp);
-  if (nvalues < 1 || nvalues > 64) error->all(FLERR, "fix jgm/history: values per contact {} not in 1..64", nvalues);
-  if (flip_lo < 0 || flip_hi < flip_lo || flip_hi > nvalues)
-    error->all(FLERR, "fix jgm/history: negated values {}..{} not within 0..{}", flip_lo, flip_hi, nvalues);
+  check_layout(error, nvalues, flip_lo, flip_hi);
+  restored_nvalues = nvalues;
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
@@ -47,6 +47,41 @@ FixJGMHistory::~FixJGMHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
+}
+
+void FixJGMHistory::check_layout(Error *error, int nvalues, int flip_lo, int flip_hi)
+{
+  if (nvalues < 1 || nvalues > 64) error->all(FLERR, "fix jgm/history: values per contact {} not in 1..64", nvalues);
+  if (flip_lo < 0 || flip_hi < flip_lo || flip_hi > nvalues)
+    error->all(FLERR, "fix jgm/history: negated values {}..{} not within 0..{}", flip_lo, flip_hi, nvalues);
+}
+
+// keep each contact's first values, as many as both layouts have; the rest start at 0
+static void resize_rows(std::vector<double> &p, int from, int to)
+{
+  if (from == to || p.empty()) return;
+  std::vector<double> out;
+  out.reserve(p.size() / (1 + from) * (1 + to));
+  for (size_t c = 0; c + from < p.size(); c += 1 + from) {
+    out.push_back(p[c]);
+    for (int k = 0; k < to; ++k) out.push_back(k < from ? p[c + 1 + k] : 0.0);
+  }
+  p.swap(out);
+}
+
+void FixJGMHistory::relayout(int n, int lo, int hi)
+{
+  if (n == nvalues && lo == flip_lo && hi == flip_hi) return;
+  check_layout(error, n, lo, hi);
+  // between runs the open contacts are in the partner lists (post_run); the next set-up's
+  // neighbour build spreads them over the list again
+  for (int i = 0; i < atom->nlocal; ++i) resize_rows(partners[i], nvalues, n);
+  nvalues = n;
+  flip_lo = lo;
+  flip_hi = hi;
+  vals.clear();
+  used.clear();
+  current = false;
 }
 
 int FixJGMHistory::setmask()
@@ -73,8 +108,9 @@ void FixJGMHistory::to_atoms()
       int i = list->ilist[ii];
       int *jlist = list->firstneigh[i];
       const double *v = values(i);
+      const unsigned char *u = in_use(i);
       for (int jj = 0; jj < list->numneigh[i]; ++jj, v += nvalues) {
-        if (!FastrestJGM::row_open(v, nvalues)) continue;
+        if (!u[jj]) continue;
         int j = jlist[jj] & NEIGHMASK;
         add_partner(i, static_cast<double>(tag[j]), v, false);
         if (j < nlocal) add_partner(j, static_cast<double>(tag[i]), v, true);
@@ -118,9 +154,10 @@ void FixJGMHistory::post_neighbor()
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
     offset[i] = total;
-    total += static_cast<size_t>(list->numneigh[i]) * nvalues;
+    total += static_cast<size_t>(list->numneigh[i]);
   }
-  vals.assign(total, 0.0);
+  vals.assign(total * nvalues, 0.0);
+  used.assign(total, 0);
   const size_t stride = 1 + nvalues;
   std::vector<int> taken;
   for (int ii = 0; ii < list->inum; ++ii) {
@@ -129,6 +166,7 @@ void FixJGMHistory::post_neighbor()
     if (p.empty()) continue;
     int *jlist = list->firstneigh[i];
     double *v = values(i);
+    unsigned char *u = in_use(i);
     taken.assign(p.size() / stride, -1);
     for (int jj = 0; jj < list->numneigh[i]; ++jj) {
       int j = jlist[jj] & NEIGHMASK;
@@ -145,9 +183,11 @@ void FixJGMHistory::post_neighbor()
           }
           if (!(dn < dold)) break;
           for (int k = 0; k < nvalues; ++k) v[static_cast<size_t>(at) * nvalues + k] = 0.0;
+          u[at] = 0;
         }
         at = jj;
         for (int k = 0; k < nvalues; ++k) v[static_cast<size_t>(jj) * nvalues + k] = p[m + 1 + k];
+        u[jj] = FastrestJGM::row_open(p.data() + m + 1, nvalues);
         break;
       }
     }
@@ -160,6 +200,7 @@ void FixJGMHistory::write_restart(FILE *fp)
   if (comm->me != 0) return;
   std::vector<double> rec;
   rec.push_back(MODEL_MAGIC);
+  rec.push_back(static_cast<double>(nvalues));
   rec.push_back(static_cast<double>(model.size()));
   rec.insert(rec.end(), model.begin(), model.end());
   int size = static_cast<int>(rec.size() * sizeof(double));
@@ -171,13 +212,16 @@ void FixJGMHistory::restart(char *buf)
 {
   // LAMMPS passes the record without its length: read only as far as the record itself says,
   // and no further than any model the pair style can write (PairJGM::model_record)
-  double head[2];
+  double head[3];
   std::memcpy(head, buf, sizeof(head));
   double most = 8.0 + 4.0 * atom->ntypes;
-  if (head[0] != MODEL_MAGIC || !(head[1] >= 0.0 && head[1] <= most) || head[1] != std::floor(head[1]))
+  if (head[0] != MODEL_MAGIC || !(head[1] >= 1.0 && head[1] <= 64.0) || head[1] != std::floor(head[1]) ||
+      !(head[2] >= 0.0 && head[2] <= most) || head[2] != std::floor(head[2]))
     error->all(FLERR, "fix jgm/history: the restart file's record of pair_style jgm's model is damaged or from "
-                      "another version of the plugin");
-  restored_model.resize(static_cast<size_t>(head[1]));
+                      "another version of the plugin (write the state with write_data there to continue here; "
+                      "contacts then start anew)");
+  restored_nvalues = static_cast<int>(head[1]);
+  restored_model.resize(static_cast<size_t>(head[2]));
   std::memcpy(restored_model.data(), buf + sizeof(head), restored_model.size() * sizeof(double));
   for (double v : restored_model)
     if (!std::isfinite(v))
@@ -242,7 +286,8 @@ void FixJGMHistory::unpack_restart(int nlocal, int nth)
   if (at < 0) error->one(FLERR, "fix jgm/history: restart file holds a damaged record for atom {}", self);
   double m = at, size = extra[at];
   double n = size - 2.0;
-  if (!(n >= 0.0 && m + size <= width) || n != std::floor(n) || std::fmod(n, 1.0 + nvalues) != 0.0)
+  const int stored = restored_nvalues;    // values per contact in the file
+  if (!(n >= 0.0 && m + size <= width) || n != std::floor(n) || std::fmod(n, 1.0 + stored) != 0.0)
     error->one(FLERR, "fix jgm/history: restart file holds a bad contact list for atom {} (its length is "
                       "not a whole number of contacts within the record)", self);
   if (!std::isfinite(extra[at + 1]) || extra[at + 1] < 0.0)
@@ -250,17 +295,19 @@ void FixJGMHistory::unpack_restart(int nlocal, int nth)
                       "and >= 0", self);
   ended_energy[nlocal] = extra[at + 1];
   partners[nlocal].assign(extra + at + 2, extra + at + 2 + static_cast<int>(n));
-  const std::vector<double> &p = partners[nlocal];
-  for (size_t c = 0; c < p.size(); c += 1 + nvalues) {
+  std::vector<double> &p = partners[nlocal];
+  for (size_t c = 0; c < p.size(); c += 1 + stored) {
     double t = p[c];
     if (!(t >= 1.0 && t <= static_cast<double>(MAXTAGINT)) || t != std::floor(t) || t == static_cast<double>(self))
       error->one(FLERR, "fix jgm/history: restart file holds a contact of atom {} with a partner ID {} that is "
                         "no other atom's", self, t);
-    for (int k = 1; k <= nvalues; ++k)
+    for (int k = 1; k <= stored; ++k)
       if (!std::isfinite(p[c + k]))
         error->one(FLERR, "fix jgm/history: restart file holds a contact of atom {} (partner {}) with a value "
                           "that is not finite", self, static_cast<tagint>(t));
   }
+  // a file of the model with rolling or twisting read by one without (or the reverse)
+  resize_rows(p, stored, nvalues);
   if (!p.empty()) restored_rows = true;
 }
 
@@ -277,7 +324,7 @@ int FixJGMHistory::maxsize_restart()
 
 double FixJGMHistory::memory_usage()
 {
-  double bytes = static_cast<double>(vals.capacity() + ended_energy.capacity()) * sizeof(double);
+  double bytes = static_cast<double>(vals.capacity() + ended_energy.capacity()) * sizeof(double) + used.capacity();
   for (const auto &p : partners) bytes += static_cast<double>(p.capacity()) * sizeof(double);
   return bytes;
 }

@@ -11,8 +11,9 @@
    no ghost communication is needed. The partner lists grow as needed (no limit on contacts per
    atom). Each atom also carries its share of the energy dissipated by its contacts that ended.
 
-   The fix's global restart record holds the pair style's model (its materials and options), so
-   that a run read back from a restart file can refuse another model for contacts that are open. */
+   The fix's global restart record holds the values per contact and the pair style's model (its
+   materials and options), so that a run read back from a restart file can refuse another model
+   for contacts that are open. */
 #ifndef FASTREST_FIX_JGM_HISTORY_H
 #define FASTREST_FIX_JGM_HISTORY_H
 
@@ -48,11 +49,17 @@ class FixJGMHistory : public Fix {
 
   void set_list(class NeighList *l) { list = l; }
   //! The values of local atom i's neighbours, NVALUES each, in its neighbour-list order.
-  double *values(int i) { return vals.data() + offset[i]; }
+  double *values(int i) { return vals.data() + offset[i] * nvalues; }
+  //! Per neighbour of local atom i: 1 where its row is in use (the pair style keeps these as it
+  //! opens and ends contacts), so that pairs apart are told without reading their rows.
+  unsigned char *in_use(int i) { return used.data() + offset[i]; }
   //! Open contacts local atom i carries (between a migration and the next rebuild).
   int partner_count(int i) const { return static_cast<int>(partners[i].size() / (1 + nvalues)); }
   //! Energy dissipated by local atom i's contacts that ended (its half of each).
   double &ended(int i) { return ended_energy[i]; }
+  //! Another row layout (values per contact, negated range) for the next run: each open contact
+  //! keeps its first values, the rest start at 0 (the layouts share a prefix; PairJGM::nhist).
+  void relayout(int nvalues, int flip_lo, int flip_hi);
 
   //! The model the pair style runs (written to restart files) and the one a restart file held
   //! (empty: none read); see PairJGM::model_record.
@@ -62,18 +69,21 @@ class FixJGMHistory : public Fix {
 
   int nvalues;
   int flip_lo, flip_hi;    // values flip_lo .. flip_hi - 1 are vectors from atom i to j: negated for j
+  int restored_nvalues;    // values per contact of the restart file read (its global record)
 
  private:
   class NeighList *list;
   std::vector<std::vector<double>> partners;
   std::vector<double> ended_energy;
   std::vector<double> vals;
-  std::vector<size_t> offset;
+  std::vector<unsigned char> used;
+  std::vector<size_t> offset;    // per local atom: its first neighbour's index in used (rows: x nvalues)
   bool current;    // vals hold the histories of the current list
 
   void to_atoms();
   void add_partner(int i, double tag, const double *v, bool flip);
   void check_box();
+  static void check_layout(class Error *, int nvalues, int flip_lo, int flip_hi);
 };
 
 }    // namespace LAMMPS_NS

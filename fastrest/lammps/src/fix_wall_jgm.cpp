@@ -25,7 +25,7 @@ static const char *WHERE = "fix wall/jgm";
 // fix ID group wall/jgm zplane ZLO ZHI E nu Sy [Et value] [unloading jcg|etsion|brake]
 //     [tangential none|mindlin MU]
 FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), mu(-1.0), mu_given(false), restored(false),
+    Fix(lmp, narg, arg), zlo(0.0), zhi(0.0), has_lo(0), has_hi(0), mu_own(-1.0), mu_given(false), restored(false),
     hist(nullptr), force_flag(0)
 {
   if (narg < 9)
@@ -45,11 +45,11 @@ FixWallJGM::FixWallJGM(LAMMPS *lmp, int narg, char **arg) :
     if (std::strcmp(arg[k], "tangential") == 0) {
       mu_given = true;
       if (std::strcmp(arg[k + 1], "none") == 0) {
-        mu = -1.0;
+        mu_own = -1.0;
       } else if (std::strcmp(arg[k + 1], "mindlin") == 0) {
         if (k + 2 >= narg) error->all(FLERR, "fix wall/jgm: 'tangential mindlin' needs the friction coefficient MU");
-        mu = FastrestJGM::finite_number(lmp, WHERE, "MU", arg[k + 2]);
-        if (!(mu >= 0.0)) error->all(FLERR, "fix wall/jgm: friction coefficient MU = {} must be >= 0", arg[k + 2]);
+        mu_own = FastrestJGM::finite_number(lmp, WHERE, "MU", arg[k + 2]);
+        if (!(mu_own >= 0.0)) error->all(FLERR, "fix wall/jgm: friction coefficient MU = {} must be >= 0", arg[k + 2]);
         ++k;
       } else {
         error->all(FLERR, "fix wall/jgm: tangential model '{}' is not none or mindlin", arg[k + 1]);
@@ -95,9 +95,9 @@ void FixWallJGM::init()
   auto *pair = dynamic_cast<PairJGM *>(force->pair_match("jgm", 1));
   if (!pair) error->all(FLERR, "fix wall/jgm needs pair_style jgm (the particles' materials)");
   std::string model = unloading.empty() ? pair->unloading() : unloading;
-  if (!mu_given) mu = pair->friction();    // the pair style's tangential model, unless given here
-  res = pair->resistance();                 // and its rolling and twisting resistance
-  if (res.twist == FastrestJGM::Resistance::MARSHALL && mu < 0.0)
+  contact = pair->contact_model();    // the pair style's tangential model, rolling and twisting
+  if (mu_given) contact.mu = mu_own;   // unless the wall is given its own friction
+  if (contact.res.twist == FastrestJGM::Resistance::MARSHALL && contact.mu < 0.0)
     error->all(FLERR, "fix wall/jgm: the pair style's 'twisting marshall' needs the wall's tangential mindlin MU, "
                       "but the wall has 'tangential none'");
   if (!restored_wall.empty()) {
@@ -176,7 +176,6 @@ void FixWallJGM::post_force(int)
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
   double *radius = atom->radius;
   int *mask = atom->mask, *type = atom->type;
-  const double *rows = laws.rows.data();
   const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
   force_flag = 0;
   wall_force[0] = wall_force[1] = 0.0;
@@ -198,28 +197,22 @@ void FixWallJGM::post_force(int)
         for (int k = 0; k < PER_WALL; ++k) h[k] = 0.0;
         continue;
       }
-      double p = fastrest_law_step(rows, law.first, law.last, law.w_end, h, w);
-      if (!(p == p))
+      double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
+      // as pair_style jgm, with the wall a body at rest and the sphere's radius the reduced one
+      const double still[3] = {0.0, 0.0, 0.0};
+      double vt[3] = {0.0, 0.0, 0.0};
+      if (contact.mu >= 0.0) FastrestJGM::sliding_velocity(v[i], still, omega[i], still, r, 0.0, n, vt);
+      const bool resist = contact.res.any();
+      const FastrestJGM::ContactHistory ch = {h, h + W_XI, h + W_R, h + W_T};
+      FastrestJGM::ContactForce cf;
+      if (!FastrestJGM::contact_step(contact, laws, law, ch, w, r, n, vt, omega[i], from_pressure,
+                                     update->setupflag ? 0.0 : dt, false, cf))
         error->one(FLERR, "fix wall/jgm: atom {} (type {}) overlaps the {} wall past the model's end: w* = {:.6g} > {:.6g}",
                    atom->tag[i], type[i], side == 0 ? "lower" : "upper", w, law.w_end);
-      double fn = p * law.p_c1 * r * r * from_pressure;
-      double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
-      double ft[3] = {0.0, 0.0, 0.0};
-      double s = FastrestJGM::elastic_fraction(h, w), a = FastrestJGM::contact_radius(laws, law, h, s, r);
-      double kt = FastrestJGM::tangential_stiffness(law, a) * from_pressure;
-      if (res.any()) {    // as pair_style jgm, the wall at rest and the sphere's radius the reduced one
-        double mt[3];
-        FastrestJGM::resistance_step(res, h + W_R, h + W_T, omega[i], n, r, fn, kt, a, mu,
-                                     update->setupflag ? 0.0 : dt, mt);
-        for (int k = 0; k < 3; ++k) torque[i][k] += mt[k];
-      }
-      if (mu >= 0.0) {    // as pair_style jgm, with the wall at rest
-        // contact point: v + omega x (-r n)
-        double vt[3] = {v[i][0] - r * (omega[i][1] * n[2] - omega[i][2] * n[1]),
-                        v[i][1] - r * (omega[i][2] * n[0] - omega[i][0] * n[2]),
-                        v[i][2] - r * (omega[i][0] * n[1] - omega[i][1] * n[0])};
-        FastrestJGM::mindlin_step(h + W_XI, n, vt, kt, mu * fn, update->setupflag ? 0.0 : dt, ft);
-        // torque of F_t applied at -r n: (-r n) x F_t
+      const double fn = cf.fn, *ft = cf.ft;
+      if (resist)
+        for (int k = 0; k < 3; ++k) torque[i][k] += cf.mt[k];
+      if (contact.mu >= 0.0) {    // torque of F_t applied at -r n: (-r n) x F_t
         torque[i][0] += -r * (n[1] * ft[2] - n[2] * ft[1]);
         torque[i][1] += -r * (n[2] * ft[0] - n[0] * ft[2]);
         torque[i][2] += -r * (n[0] * ft[1] - n[1] * ft[0]);

@@ -5,8 +5,8 @@
 
 #include "fix.h"
 
+#include "jgm_contact.h"
 #include "jgm_laws.h"
-#include "jgm_tangential.h"
 
 #include <string>
 #include <vector>
@@ -44,9 +44,9 @@ class FixWallJGM : public Fix {
   int has_lo, has_hi;
   FastrestJGM::Body wall;
   std::string unloading;
-  double mu;    // tangential mindlin MU; < 0: tangential none
+  double mu_own;    // tangential mindlin MU given here (< 0: tangential none)
   bool mu_given;    // tangential given here; else the pair style's
-  FastrestJGM::Resistance res;    // rolling and twisting: the pair style's
+  FastrestJGM::ContactModel contact;    // the pair style's friction (or mu_own), rolling and twisting
   bool restored;    // histories read from a restart file, checked at the next set-up
   std::vector<double> restored_wall;    // the wall's material in the restart file (empty: none)
   FastrestJGM::Laws laws;

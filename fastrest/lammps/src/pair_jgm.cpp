@@ -26,7 +26,7 @@ using FastrestJGM::Body;
 static const char *HISTORY_ID = "FASTREST_JGM_HISTORY";
 
 PairJGM::PairJGM(LAMMPS *lmp) :
-    Pair(lmp), unloading_model("jcg"), mu(-1.0), neighprev(0), history(nullptr)
+    Pair(lmp), unloading_model("jcg"), neighprev(0), history(nullptr)
 {
   nextra = 2;    // compute pair jgm: [1] energy dissipated in contacts, [2] elastic energy they hold
   pvector = new double[2];
@@ -67,8 +67,9 @@ void PairJGM::allocate()
 void PairJGM::settings(int narg, char **arg)
 {
   unloading_model = "jcg";
-  mu = -1.0;
-  res = FastrestJGM::Resistance();
+  model = FastrestJGM::ContactModel();
+  double &mu = model.mu;
+  FastrestJGM::Resistance &res = model.res;
   int k = 0;
   while (k < narg) {
     std::string key = arg[k];
@@ -149,9 +150,14 @@ void PairJGM::init_style()
   // ghost atoms carry velocities (comm_modify vel yes): a contact's first step of work needs them;
   // set before comm->init() sizes the messages
   comm->ghost_velocity = 1;
-  if (!f) f = modify->add_fix(fmt::format("{} all jgm/history {} {} {}", HISTORY_ID, NHIST, H_F, NHIST));
+  // the vectors from j to i are negated for j: H_F up to the row's end without rolling, to H_R with
+  const int nh = nhist(), flip_hi = model.res.any() ? H_R : NHIST_SLIDE;
+  if (!f) f = modify->add_fix(fmt::format("{} all jgm/history {} {} {}", HISTORY_ID, nh, H_F, flip_hi));
   history = dynamic_cast<FixJGMHistory *>(f);
   if (!history) error->all(FLERR, "fix ID {} is reserved for pair_style jgm", HISTORY_ID);
+  // rolling or twisting switched on or off since the last run: the open contacts keep their normal
+  // and sliding history; rolling and twisting springs start at rest (or are dropped)
+  history->relayout(nh, H_F, flip_hi);
 
   // the largest radius of each type, as pair granular finds it: the atoms there now and any fix
   // that will insert atoms of the type (fix pour, fix deposit: extract("radius", type)); the
@@ -184,7 +190,7 @@ std::vector<double> PairJGM::model_record() const
 {
   int n = atom->ntypes;
   std::vector<double> rec = {static_cast<double>(n), static_cast<double>(FastrestJGM::unloading_index(unloading_model)),
-                             mu};
+                             model.mu};
   for (int t = 1; t <= n; ++t) rec.insert(rec.end(), {mat[t].E, mat[t].nu, mat[t].Sy, mat[t].Et});
   return rec;
 }
@@ -229,6 +235,7 @@ void PairJGM::check_restored_model()
 void PairJGM::check_restored_rows()
 {
   history->restored_rows = false;
+  const int nh = nhist();
   int *type = atom->type;
   tagint *tag = atom->tag;
   int stride = atom->ntypes + 1;
@@ -236,8 +243,8 @@ void PairJGM::check_restored_rows()
     int i = list->ilist[ii];
     int *jlist = list->firstneigh[i];
     const double *h = history->values(i);
-    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += NHIST) {
-      if (!FastrestJGM::row_open(h, NHIST)) continue;
+    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += nh) {
+      if (!FastrestJGM::row_open(h, nh)) continue;
       int j = jlist[jj] & NEIGHMASK;
       std::string why = FastrestJGM::row_problem(laws, law_of[type[i] * stride + type[j]], h);
       if (why.empty() && !(h[H_Q] > 0.0 && h[H_Q] < 2.0)) why = "its lever fraction is not in (0, 2)";
@@ -324,14 +331,15 @@ void PairJGM::compute(int eflag, int vflag)
   tagint *tag = atom->tag;
   int nlocal = atom->nlocal;
   int stride = atom->ntypes + 1;
-  const double *rows = laws.rows.data();
   const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
   double dissipated = 0.0, stored = 0.0;
   // the forces of a run's set-up are those of the state as it is: histories advance only in steps
   // (a restarted run then repeats the uninterrupted one)
   const bool setup = update->setupflag != 0;
   if (setup && history->restored_rows) check_restored_rows();
-  double scratch[NHIST];
+  const int nh = nhist();
+  const bool resist = model.res.any(), sliding = model.mu >= 0.0;
+  double scratch[NHIST_ROLL];
 
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
@@ -342,19 +350,20 @@ void PairJGM::compute(int eflag, int vflag)
                         "was set for at the run's start (the type's atoms then and the radii that fix pour or fix "
                         "deposit insert); start a new run after changing radii", tag[i], type[i], ri, onerad[type[i]]);
     int *jlist = list->firstneigh[i];
-    double *row = history->values(i);
-    for (int jj = 0; jj < list->numneigh[i]; ++jj, row += NHIST) {
-      double *h = row;
-      if (setup) {
-        for (int k = 0; k < NHIST; ++k) scratch[k] = row[k];
-        h = scratch;
-      }
+    double *rows_i = history->values(i);
+    unsigned char *in_use = history->in_use(i);
+    for (int jj = 0; jj < list->numneigh[i]; ++jj) {
       int j = jlist[jj] & NEIGHMASK;
-      double weight = j < nlocal ? 1.0 : 0.5;    // a pair with a ghost is also stepped on its rank
       double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       double rsq = dx * dx + dy * dy + dz * dz;
       double radsum = ri + radius[j];
-      if (rsq >= radsum * radsum && !(h[0] > 0.0)) continue;    // apart, no contact open
+      if (rsq >= radsum * radsum && !in_use[jj]) continue;    // apart, no contact open: its row unread
+      double *row = rows_i + static_cast<size_t>(jj) * nh, *h = row;
+      if (setup) {
+        for (int k = 0; k < nh; ++k) scratch[k] = row[k];
+        h = scratch;
+      }
+      double weight = j < nlocal ? 1.0 : 0.5;    // a pair with a ghost is also stepped on its rank
       const FastrestJGM::Law &law = laws.law[law_of[type[i] * stride + type[j]]];
       double r = std::sqrt(rsq);
       double reff = ri * radius[j] / radsum;
@@ -365,11 +374,22 @@ void PairJGM::compute(int eflag, int vflag)
           history->ended(i) += 0.5 * h[H_W];
           if (j < nlocal) history->ended(j) += 0.5 * h[H_W];
         }
-        for (int k = 0; k < NHIST; ++k) h[k] = 0.0;
+        for (int k = 0; k < nh; ++k) h[k] = 0.0;
+        if (!setup) in_use[jj] = 0;
         continue;
       }
-      double p = fastrest_law_step(rows, law.first, law.last, law.w_end, h, w);
-      if (!(p == p)) {
+      double n[3] = {dx / r, dy / r, dz / r};
+      // lever arms of the contact point, li + lj = r: torques then conserve angular momentum
+      double q = r / radsum, li = ri * q, lj = radius[j] * q;
+      double vt[3] = {0.0, 0.0, 0.0}, relrot[3] = {0.0, 0.0, 0.0};
+      if (sliding) FastrestJGM::sliding_velocity(v[i], v[j], omega[i], omega[j], li, lj, n, vt);
+      if (resist)
+        for (int k = 0; k < 3; ++k) relrot[k] = omega[i][k] - omega[j][k];
+      const FastrestJGM::ContactHistory hist = {h, h + H_XI, resist ? h + H_R : nullptr, resist ? h + H_T : nullptr};
+      FastrestJGM::ContactForce cf;
+      // set-up: the forces of the state as it is (dt 0), those of the step that left it
+      if (!FastrestJGM::contact_step(model, laws, law, hist, w, reff, n, vt, relrot, from_pressure, setup ? 0.0 : dt,
+                                     true, cf)) {
         if (w > law.w_end)
           error->one(FLERR, "pair jgm: atoms {} and {} (types {} {}) overlap past the model's end: w* = {:.6g} > {:.6g} "
                             "(interference {:.6g} of reduced radius {:.6g}): the impact is faster than the model "
@@ -378,32 +398,9 @@ void PairJGM::compute(int eflag, int vflag)
         error->one(FLERR, "pair jgm: atoms {} and {} (types {} {}): no force at w* = {:.6g} (history lost)",
                    tag[i], tag[j], type[i], type[j], w);
       }
-      double fn = p * law.p_c1 * reff * reff * from_pressure;
-      double n[3] = {dx / r, dy / r, dz / r};
-      // elastic energy of the normal law: the integral of its unloading branch, JGM eq (32)
-      double s = FastrestJGM::elastic_fraction(h, w);
-      double elastic = FastrestJGM::normal_energy(h, s, law, reff) * from_pressure;
-      double ft[3] = {0.0, 0.0, 0.0};
-      // lever arms of the contact point, li + lj = r: torques then conserve angular momentum
-      double q = r / radsum, li = ri * q, lj = radius[j] * q;
-      // the contact radius, for Mindlin's k_t = 8 G* a and for rolling and twisting
-      double a = (mu >= 0.0 || res.any()) ? FastrestJGM::contact_radius(laws, law, h, s, reff) : 0.0;
-      double kt = FastrestJGM::tangential_stiffness(law, a) * from_pressure;
-      if (mu >= 0.0) {
-        double spin[3] = {li * omega[i][0] + lj * omega[j][0], li * omega[i][1] + lj * omega[j][1],
-                          li * omega[i][2] + lj * omega[j][2]};
-        double turn[3];
-        cross(spin, n, turn);
-        double vt[3] = {v[i][0] - v[j][0] - turn[0], v[i][1] - v[j][1] - turn[1], v[i][2] - v[j][2] - turn[2]};
-        // set-up: the force of the displacement as it is (dt 0), that of the step that left it
-        elastic += FastrestJGM::mindlin_step(h + H_XI, n, vt, kt, mu * fn, setup ? 0.0 : dt, ft);
-      }
-      double mt[3] = {0.0, 0.0, 0.0};
-      if (res.any()) {    // rolling and twisting torques: mt on i, -mt on j
-        double relrot[3] = {omega[i][0] - omega[j][0], omega[i][1] - omega[j][1], omega[i][2] - omega[j][2]};
-        elastic += FastrestJGM::resistance_step(res, h + H_R, h + H_T, relrot, n, reff, fn, kt, a, mu,
-                                                setup ? 0.0 : dt, mt);
-      }
+      // rolling and twisting torques: mt on i, -mt on j
+      const double fn = cf.fn, *ft = cf.ft, *mt = cf.mt;
+      double elastic = cf.elastic;
       double fv[3] = {fn * n[0] + ft[0], fn * n[1] + ft[1], fn * n[2] + ft[2]};
       double c[3], ti[3], tj[3];
       cross(n, ft, c);
@@ -417,18 +414,22 @@ void PairJGM::compute(int eflag, int vflag)
       // None at set-up: no step is taken there
       if (!setup) {
         double work = 0.0;
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < 3; ++k) {
+          double mi = resist ? h[H_M + k] : 0.0;    // the last step's rolling and twisting torque
           work += (h[H_F + k] + fv[k]) * (v[i][k] - v[j][k]) +
-              (-ri * h[H_Q] * h[H_C + k] + h[H_M + k] + ti[k]) * omega[i][k] +
-              (-radius[j] * h[H_Q] * h[H_C + k] - h[H_M + k] + tj[k]) * omega[j][k];
+              (-ri * h[H_Q] * h[H_C + k] + mi + ti[k]) * omega[i][k] +
+              (-radius[j] * h[H_Q] * h[H_C + k] - mi + tj[k]) * omega[j][k];
+        }
         h[H_W] -= 0.5 * dt * work;
       }
       h[H_Q] = q;
+      if (!setup) in_use[jj] = 1;
       for (int k = 0; k < 3; ++k) {
         h[H_F + k] = fv[k];
         h[H_C + k] = c[k];
-        h[H_M + k] = mt[k];
       }
+      if (resist)
+        for (int k = 0; k < 3; ++k) h[H_M + k] = mt[k];
       dissipated += weight * (h[H_W] - elastic);
       stored += weight * elastic;
       for (int k = 0; k < 3; ++k) {
@@ -443,10 +444,12 @@ void PairJGM::compute(int eflag, int vflag)
       if (evflag) ev_tally_xyz(i, j, nlocal, 0, elastic, 0.0, fv[0], fv[1], fv[2], dx, dy, dz);
     }
   }
-  double ended = 0.0;
-  for (int i = 0; i < nlocal; ++i) ended += history->ended(i);
-  pvector[0] = ended + dissipated;
-  pvector[1] = stored;
+  if (eflag_global) {    // compute pair reads pvector at steps that tally energy only
+    double ended = 0.0;
+    for (int i = 0; i < nlocal; ++i) ended += history->ended(i);
+    pvector[0] = ended + dissipated;
+    pvector[1] = stored;
+  }
 }
 
 double PairJGM::contact_state(const double *h, const FastrestJGM::Law &law, double w, double reff, const double *n,
@@ -459,11 +462,12 @@ double PairJGM::contact_state(const double *h, const FastrestJGM::Law &law, doub
   elastic = FastrestJGM::normal_energy(copy, s, law, reff) * from_pressure;
   double fn = p * law.p_c1 * reff * reff * from_pressure;
   double along = h[H_F] * n[0] + h[H_F + 1] * n[1] + h[H_F + 2] * n[2];
+  const double mu = model.mu;
   for (int k = 0; k < 3; ++k) ft[k] = mu >= 0.0 ? h[H_F + k] - along * n[k] : 0.0;
   double a = FastrestJGM::contact_radius(laws, law, copy, s, reff);
   double kt = FastrestJGM::tangential_stiffness(law, a) * from_pressure;
   if (mu >= 0.0 && kt > 0.0) elastic += 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]) / kt;
-  elastic += FastrestJGM::resistance_energy(res, h + H_R, h[H_T], kt, a, mu);
+  if (model.res.any()) elastic += FastrestJGM::resistance_energy(model.res, h + H_R, h[H_T], kt, a, mu);
   return fn;
 }
 
@@ -477,7 +481,7 @@ const double *PairJGM::row_of(int i, int j)
     if (a >= atom->nlocal) break;
     int num = list->numneigh[a], *jlist = list->firstneigh[a];
     for (int jj = 0; jj < num; ++jj)
-      if ((jlist[jj] & NEIGHMASK) == b) return history->values(a) + static_cast<size_t>(jj) * NHIST;
+      if ((jlist[jj] & NEIGHMASK) == b) return history->values(a) + static_cast<size_t>(jj) * nhist();
   }
   return nullptr;
 }
@@ -521,11 +525,12 @@ void PairJGM::per_atom(double **out)
     out[i][1] = out[i][2] = 0.0;
   }
   if (!list || !history) return;
+  const int nh = nhist();
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
     int *jlist = list->firstneigh[i];
     const double *h = history->values(i);
-    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += NHIST) {
+    for (int jj = 0; jj < list->numneigh[i]; ++jj, h += nh) {
       if (!(h[0] > 0.0)) continue;
       int j = jlist[jj] & NEIGHMASK;
       double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];

@@ -5,8 +5,8 @@
 
 #include "pair.h"
 
+#include "jgm_contact.h"
 #include "jgm_laws.h"
-#include "jgm_tangential.h"
 
 #include <string>
 #include <vector>
@@ -16,12 +16,13 @@ namespace LAMMPS_NS {
 class PairJGM : public Pair {
  public:
   // [0, STATE): the law's row; H_W: energy taken; H_Q: r/(R_i + R_j) and H_C: n x F_t at the last
-  // step (the torques' lever and direction, alike seen from i or j); H_R the rolling displacement
-  // and H_T the twist angle (alike seen from i or j); then vectors from j to i (negated for j): H_F
-  // the force on i at the last step, H_XI the tangential displacement, H_M the rolling and twisting
-  // torque on i at the last step
-  static constexpr int H_W = FastrestJGM::STATE, H_Q = H_W + 1, H_C = H_Q + 1, H_R = H_C + 3, H_T = H_R + 3,
-                       H_F = H_T + 1, H_XI = H_F + 3, H_M = H_XI + 3, NHIST = H_M + 3;
+  // step (the torques' lever and direction, alike seen from i or j); then vectors from j to i
+  // (negated for j): H_F the force on i at the last step, H_XI the tangential displacement. With
+  // rolling or twisting on, the row goes on: H_M the rolling and twisting torque on i at the last
+  // step (negated for j), H_R the rolling displacement and H_T the twist angle (alike seen from i
+  // or j). A row holds only what the model steps (NHIST_SLIDE or NHIST_ROLL values: nhist())
+  static constexpr int H_W = FastrestJGM::STATE, H_Q = H_W + 1, H_C = H_Q + 1, H_F = H_C + 3, H_XI = H_F + 3,
+                       NHIST_SLIDE = H_XI + 3, H_M = NHIST_SLIDE, H_R = H_M + 3, H_T = H_R + 3, NHIST_ROLL = H_T + 1;
   //! single()'s extra values (compute pair/local p1..p7): normal force, |tangential force|, w*,
   //! w_max*, energy dissipated so far, contact radius, elastic energy held
   static constexpr int NSINGLE = 7;
@@ -43,13 +44,14 @@ class PairJGM : public Pair {
   //! The material of atom type t (set by pair_coeff t t), or nullptr.
   const FastrestJGM::Body *material(int t) const;
   const std::string &unloading() const { return unloading_model; }
-  double friction() const { return mu; }
-  const FastrestJGM::Resistance &resistance() const { return res; }
+  //! Friction, rolling and twisting (the wall's follow them).
+  const FastrestJGM::ContactModel &contact_model() const { return model; }
+  //! Values of a contact's history row for the model as set: NHIST_ROLL with rolling or twisting on.
+  int nhist() const { return model.res.any() ? NHIST_ROLL : NHIST_SLIDE; }
 
  private:
   std::string unloading_model;
-  double mu;    // Coulomb friction coefficient of tangential mindlin; < 0: tangential none
-  FastrestJGM::Resistance res;    // rolling and twisting
+  FastrestJGM::ContactModel model;    // tangential mindlin MU (< 0: none), rolling and twisting
   std::vector<FastrestJGM::Body> mat;    // per type
   std::vector<int> mat_set;
   FastrestJGM::Laws laws;
