@@ -183,7 +183,8 @@ def _one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9", style="pair_style jgm", atom
     (_one_pair(coeff="pair_coeff 1 1 200e9 0.3"), "expected 'I J E nu Sy [Et value]'"),
     (_one_pair(coeff="pair_coeff 1 1 -200e9 0.3 1e9"), "E = -200e9 must be > 0"),
     (_one_pair(coeff="pair_coeff 1 1 200e9 0.6 1e9"), "nu = 0.6 must be in [0, 0.5)"),
-    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 3e11"), "Sy = 3e11 must be < E = 200e9"),
+    (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 3e11"), "types_1_1: yield strength Sy = 3e+11 >= the combined "
+                                                       "modulus E'"),
     (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1.5e11"), "types_1_1: yield strength Sy = 1.5e+11 >= the combined "
                                                          "modulus E' = 1.0989e+11"),
     (_one_pair(coeff="pair_coeff 1 1 200e9 0.3 1e9 Et 2e11"), "Et = 2e11 must be in [0, E = 200e9)"),

@@ -126,3 +126,20 @@ def test_area_cells_follow_the_loading_laws_area():
             ref = a_star_unchecked(law.data.law, x, eps_y, nu, h)
             worst = max(worst, abs(a - ref) / ref)
         assert worst <= 1e-12, (eps_y, nu, h, worst)
+
+
+def test_the_plugin_reads_the_law_file_layout_python_defines():
+    """jgm_law_file.h, written at build time from fastrest.lammps.laws, states the layout the test
+    above reads (magic, head of 6 named values, rows of 16 and 8); the plugin's own sources spell
+    no layout of their own (no magic, no row width)."""
+    from fastrest.lammps.laws import law_file_header
+
+    text = law_file_header()
+    for line in ('MAGIC[9] = "FRJGMLW2"', "HEAD = 6;", "OMEGA_C1 = 0;", "P_C1 = 1;", "W_END = 2;", "ROWS = 3;",
+                 "A_C1 = 4;", "G_EFF = 5;", "ROW = 16;", "AREA_ROW = 8;", "MAX_LAWS = 4096;"):
+        assert line in text, line
+    src = lbuild._SRC
+    for path in list(src.glob("*.cpp")) + list(src.glob("*.h")):
+        code = path.read_text()
+        assert "FRJGMLW2" not in code and "'F', 'R', 'J'" not in code, path.name
+        assert "ROW = 16" not in code and "area.data() + 8" not in code, path.name

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from .. import interpolation, law_cells
+from ..force_law import STATE_SIZE
 from .._provenance import provenance
 from .c_header import _PORTABLE, _lit, _rows_literal, _table
 from ._io import check_target, write_files
@@ -317,8 +318,8 @@ _PRELUDE = r"""
 #ifndef FASTREST_LAW_FN
 #define FASTREST_LAW_FN FASTREST_FN
 #endif
-#define FASTREST_LAW_ROW 16
-#define FASTREST_STATE_SIZE 4
+#define FASTREST_LAW_ROW @LAW_ROW@
+#define FASTREST_STATE_SIZE @STATE_SIZE@
 #if defined(__CUDACC_RTC__)
 typedef unsigned long long fastrest_law_uint64;
 #else
@@ -344,6 +345,11 @@ static inline FASTREST_LAW_FN FASTREST_INT64 fastrest_law__bits(double v)
 #endif
 }
 """
+
+
+def _prelude():
+    """The header's fixed part, with the row width and history size of the Python definitions."""
+    return _PRELUDE.replace("@LAW_ROW@", str(law_cells.LAW_ROW)).replace("@STATE_SIZE@", str(STATE_SIZE))
 
 
 def law_source() -> str:
@@ -379,7 +385,7 @@ def law_source() -> str:
             " * Compile without contraction of a * b + c (gcc/clang -ffp-contract=off, nvcc --fmad=false) for",
             " * fastrest.jit's numbers bit for bit; C99 or C++, libm only; compiles unedited as CUDA. */",
             "#ifndef FASTREST_LAW_H", "#define FASTREST_LAW_H", _PORTABLE,
-            "#if defined(__CUDACC__)", "#pragma nv_diagnostic pop", "#endif", _PRELUDE]
+            "#if defined(__CUDACC__)", "#pragma nv_diagnostic pop", "#endif", _prelude()]
     body = [translate(f, c, p, r) for f, c, p, r in _FUNCTIONS]
     return "\n".join(head + body + ["#endif /* FASTREST_LAW_H */"]) + "\n"
 

@@ -157,6 +157,7 @@ def build_plugin(out: str | os.PathLike[str] = ".", *, compiler: str | None = No
     Then, in a LAMMPS input script: ``plugin load /home/me/plugins/jgmplugin.so``.
     """
     from ..export.law_c import law_source  # the translator, only when building
+    from .laws import law_file_header
 
     lmp = find_lammps()
     cxx = _compiler(compiler)
@@ -166,6 +167,7 @@ def build_plugin(out: str | os.PathLike[str] = ".", *, compiler: str | None = No
     check_target(target, "--out", "the plugin")
     with tempfile.TemporaryDirectory(prefix="fastrest-lammps-") as tmp:
         (pathlib.Path(tmp) / "fastrest_law.h").write_text(law_source(), encoding="utf-8")
+        (pathlib.Path(tmp) / "jgm_law_file.h").write_text(law_file_header(), encoding="utf-8")
         so = pathlib.Path(tmp) / PLUGIN_NAME
         defines = [f"-DFASTREST_PYTHON=\"{sys.executable}\"", f"-DFASTREST_LAMMPS_VERSION=\"{lmp.version_string}\"",
                    f"-DFASTREST_VERSION=\"{__version__}\""]

@@ -9,11 +9,13 @@ its critical values per unit reduced radius.
 
 Request file: one line per law, ``KIND E1 nu1 Sy1 Et1 E2 nu2 Sy2 Et2 LABEL``, KIND ``spheres`` or
 ``flat`` (body 1 is the sphere), moduli and strengths in any one pressure unit, LABEL a word naming
-the pair in error messages. Law file (little-endian float64 after an 8-byte magic ``FRJGMLW2``):
-the number of laws, then per law omega_c/R, P_c/R^2, the end w* of the law, the number of rows n,
-a_c/R (critical contact radius, sqrt(A_c/pi)), G* (Mindlin's combined shear modulus,
-1/((2 - nu1)/G1 + (2 - nu2)/G2), G = E/(2 (1 + nu))), the n rows of 16 values, and n rows of 8:
-[center, 1/half_width, A* c0..c5] on the same cells (A* = w* up to 1.9, Hertz; JG's A* above).
+the pair in error messages. Law file (little-endian float64 after the 8-byte :data:`MAGIC`): the number of laws, then per law
+its head (:data:`LAW_HEAD`: omega_c/R, P_c/R^2, the end w* of the law, the number of rows n, a_c/R
+(critical contact radius, sqrt(A_c/pi)), G* (Mindlin's combined shear modulus,
+1/((2 - nu1)/G1 + (2 - nu2)/G2), G = E/(2 (1 + nu)))), the n rows of
+:data:`fastrest.law_cells.LAW_ROW` values, and n rows of :data:`AREA_ROW`: [center, 1/half_width,
+A* c0..c5] on the same cells (A* = w* up to 1.9, Hertz; JG's A* above). The plugin reads it with
+the layout :func:`law_file_header` writes from these definitions.
 """
 from __future__ import annotations
 
@@ -28,18 +30,26 @@ from numpy.typing import NDArray
 from ..export._io import check_target, write_files
 from ..impact import Impact
 from ..interpolation import chebyshev_nodes, fit_cells
+from ..law_cells import LAW_ROW
 from ..loading import a_star_unchecked
 from ..loading.jackson_green import W_SWITCH
 from ..materials import Material
 from .. import unloading as _unloading
 
-__all__ = ["MAGIC", "Request", "read_requests", "area_rows", "law_bytes", "write_laws"]
+__all__ = ["MAGIC", "LAW_HEAD", "AREA_ROW", "MAX_LAWS", "Request", "read_requests", "area_rows", "law_bytes",
+           "write_laws", "law_file_header"]
 
 #: First 8 bytes of a law file.
 MAGIC = b"FRJGMLW2"
+#: Each law's head in a law file, in order (the plugin's names, ``LawFile::OMEGA_C1`` ...): omega_c/R,
+#: P_c/R^2 (pressure unit), the law's end w*, its number of rows, a_c/R, G* (pressure unit).
+LAW_HEAD = ("omega_c1", "p_c1", "w_end", "rows", "a_c1", "g_eff")
+#: Values of one row of the contact area's cells: [center, 1/half_width, A* c0..c5].
+AREA_ROW = 8
+#: Most laws one request may ask for.
+MAX_LAWS = 4096
 _KINDS = ("spheres", "flat")
 _LABEL = re.compile(r"^[A-Za-z0-9_./-]{1,80}$")
-_MAX_LAWS = 4096
 
 
 #: One law asked for: (kind, body 1 (E, nu, Sy, Et), body 2 (E, nu, Sy, Et), label).
@@ -57,8 +67,8 @@ def read_requests(path: str | os.PathLike[str]) -> list[Request]:
     """
     with open(path, encoding="ascii") as handle:
         lines = [ln.split() for ln in handle.read(1 << 20).splitlines() if ln.strip()]
-    if not lines or len(lines) > _MAX_LAWS:
-        raise ValueError(f"request file {os.fspath(path)!r}: expected 1 to {_MAX_LAWS} laws, got {len(lines)}")
+    if not lines or len(lines) > MAX_LAWS:
+        raise ValueError(f"request file {os.fspath(path)!r}: expected 1 to {MAX_LAWS} laws, got {len(lines)}")
     out = []
     for k, f in enumerate(lines, 1):
         if len(f) != 10 or f[0] not in _KINDS or not _LABEL.match(f[9]):
@@ -101,7 +111,7 @@ def area_rows(law: Any) -> NDArray[np.float64]:
     rows = law.data.law_rows
     half = 1.0 / rows[:, 1]
     edges = np.stack([rows[:, 0] - half, rows[:, 0] + half], axis=1)
-    out = np.zeros((rows.shape[0], 8))
+    out = np.zeros((rows.shape[0], AREA_ROW))
     out[:, 0], out[:, 1] = rows[:, 0], rows[:, 1]
     low = rows[:, 0] < W_SWITCH
     out[low, 2], out[low, 3] = rows[low, 0], half[low]
@@ -145,9 +155,10 @@ def law_bytes(requests: list[Request], unloading: str, pascal: float = 1.0) -> b
         except (TypeError, ValueError) as exc:
             raise ValueError(f"{label}: {exc}") from None
         rows = np.ascontiguousarray(law.data.law_rows, dtype="<f8")
-        head = [impact.omega_c, impact.P_c / pascal, float(law.data.w_max), float(rows.shape[0]),
-                math.sqrt(impact.A_c / math.pi), _g_eff(a, b) / pascal]
-        parts += [np.array(head, dtype="<f8"), rows.ravel(), area_rows(law).astype("<f8").ravel()]
+        head = {"omega_c1": impact.omega_c, "p_c1": impact.P_c / pascal, "w_end": float(law.data.w_max),
+                "rows": float(rows.shape[0]), "a_c1": math.sqrt(impact.A_c / math.pi), "g_eff": _g_eff(a, b) / pascal}
+        parts += [np.array([head[k] for k in LAW_HEAD], dtype="<f8"), rows.ravel(),
+                  area_rows(law).astype("<f8").ravel()]
     return MAGIC + np.concatenate(parts).tobytes()
 
 
@@ -156,3 +167,20 @@ def write_laws(path: str | os.PathLike[str], requests: list[Request], unloading:
     check_target(path, "--out", "the law file")
     data = law_bytes(requests, unloading, pascal)
     return write_files({path: data}, "--out", "the law file")[0]
+
+
+def law_file_header() -> str:
+    """C++ header ``jgm_law_file.h``: the law file's layout as the plugin reads it, from this module's
+    definitions (:data:`MAGIC`, :data:`LAW_HEAD`, :data:`AREA_ROW`, :data:`MAX_LAWS`) and the row width
+    :data:`fastrest.law_cells.LAW_ROW`; ``fastrest lammps build`` writes it beside the generated law."""
+    names = "\n".join(f"constexpr int {name.upper()} = {k};" for k, name in enumerate(LAW_HEAD))
+    return (f"/* jgm_law_file.h: the layout of fastrest's law file, generated from fastrest.lammps.laws. */\n"
+            "#ifndef FASTREST_JGM_LAW_FILE_H\n#define FASTREST_JGM_LAW_FILE_H\n\n#include <cstddef>\n\n"
+            "namespace FastrestJGM {\nnamespace LawFile {\n\n"
+            f"constexpr char MAGIC[{len(MAGIC) + 1}] = \"{MAGIC.decode('ascii')}\";\n"
+            f"constexpr size_t MAGIC_SIZE = {len(MAGIC)};\n"
+            f"//! Values of each law's head, and where each is in it\nconstexpr int HEAD = {len(LAW_HEAD)};\n{names}\n"
+            f"//! Values of one row of the law's cells, and of its contact area's cells\n"
+            f"constexpr int ROW = {LAW_ROW};\nconstexpr int AREA_ROW = {AREA_ROW};\n"
+            f"//! Most laws one request may ask for\nconstexpr size_t MAX_LAWS = {MAX_LAWS};\n\n"
+            "}    // namespace LawFile\n}    // namespace FastrestJGM\n\n#endif\n")

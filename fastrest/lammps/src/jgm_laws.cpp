@@ -25,9 +25,10 @@ using namespace LAMMPS_NS;
 
 namespace FastrestJGM {
 
-static const char MAGIC[8] = {'F', 'R', 'J', 'G', 'M', 'L', 'W', '2'};
-static const int ROW = 16;
-static const size_t MAX_LAWS = 4096;    // fastrest.lammps.laws's limit
+// the law file's layout: jgm_law_file.h, generated from fastrest.lammps.laws
+using LawFile::ROW;
+using LawFile::AREA_ROW;
+using LawFile::MAX_LAWS;
 
 static std::string shell_quote(const std::string &s)
 {
@@ -53,27 +54,28 @@ std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &ou
   out.rows.clear();
   out.area.clear();
   out.law.clear();
-  if (bytes.size() < 16 || std::memcmp(bytes.data(), MAGIC, 8) != 0 || (bytes.size() - 8) % 8 != 0)
+  const size_t head = LawFile::MAGIC_SIZE;
+  if (bytes.size() < head + 8 || std::memcmp(bytes.data(), LawFile::MAGIC, head) != 0 || (bytes.size() - head) % 8 != 0)
     return "not a fastrest law file";
-  size_t nd = (bytes.size() - 8) / 8;
+  size_t nd = (bytes.size() - head) / 8;
   std::vector<double> d(nd);
-  std::memcpy(d.data(), bytes.data() + 8, nd * 8);
+  std::memcpy(d.data(), bytes.data() + head, nd * 8);
   double n = d[0];
   if (!(n == static_cast<double>(expected))) return "law file holds another number of laws";
   size_t at = 1;
   for (size_t k = 0; k < expected; ++k) {
-    if (at + 6 > nd) return "law file truncated";
+    if (at + LawFile::HEAD > nd) return "law file truncated";
     Law law;
-    law.omega_c1 = d[at];
-    law.p_c1 = d[at + 1];
-    law.w_end = d[at + 2];
-    double nrows = d[at + 3];
-    law.a_c1 = d[at + 4];
-    law.g_eff = d[at + 5];
-    at += 6;
+    law.omega_c1 = d[at + LawFile::OMEGA_C1];
+    law.p_c1 = d[at + LawFile::P_C1];
+    law.w_end = d[at + LawFile::W_END];
+    double nrows = d[at + LawFile::ROWS];
+    law.a_c1 = d[at + LawFile::A_C1];
+    law.g_eff = d[at + LawFile::G_EFF];
+    at += LawFile::HEAD;
     for (double v : {law.omega_c1, law.p_c1, law.w_end, law.a_c1, law.g_eff})
       if (!(v > 0.0) || !std::isfinite(v)) return "law file holds a critical value that is not finite and > 0";
-    if (!(nrows >= 1.0) || nrows != std::floor(nrows) || nrows * (ROW + 8) > static_cast<double>(nd - at))
+    if (!(nrows >= 1.0) || nrows != std::floor(nrows) || nrows * (ROW + AREA_ROW) > static_cast<double>(nd - at))
       return "law file holds a bad row count";
     size_t nr = static_cast<size_t>(nrows);
     law.first = static_cast<int64_t>(out.rows.size() / ROW);
@@ -83,11 +85,11 @@ std::string parse_laws(const std::vector<char> &bytes, size_t expected, Laws &ou
       out.rows.push_back(d[at + m]);
     }
     at += nr * ROW;
-    for (size_t m = 0; m < nr * 8; ++m) {
+    for (size_t m = 0; m < nr * AREA_ROW; ++m) {
       if (!std::isfinite(d[at + m])) return "law file holds an area value that is not finite";
       out.area.push_back(d[at + m]);
     }
-    at += nr * 8;
+    at += nr * AREA_ROW;
     out.law.push_back(law);
   }
   if (at != nd) return "law file has trailing data";
@@ -112,7 +114,6 @@ Body read_body(LAMMPS *lmp, const std::string &where, const char *E, const char 
   if (!(b.E > 0.0)) error->all(FLERR, "{}: E = {} must be > 0", where, E);
   if (!(b.nu >= 0.0 && b.nu < 0.5)) error->all(FLERR, "{}: nu = {} must be in [0, 0.5)", where, nu);
   if (!(b.Sy > 0.0)) error->all(FLERR, "{}: Sy = {} must be > 0", where, Sy);
-  if (!(b.Sy < b.E)) error->all(FLERR, "{}: Sy = {} must be < E = {}", where, Sy, E);
   if (!(b.Et >= 0.0 && b.Et < b.E)) error->all(FLERR, "{}: Et = {} must be in [0, E = {})", where, Et, E);
   return b;
 }

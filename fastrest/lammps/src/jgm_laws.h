@@ -6,6 +6,8 @@
 #ifndef FASTREST_JGM_LAWS_H
 #define FASTREST_JGM_LAWS_H
 
+#include "fastrest_law.h"
+#include "jgm_law_file.h"
 #include "lammps.h"
 
 #include <cmath>
@@ -16,7 +18,7 @@
 namespace FastrestJGM {
 
 //! Number of doubles of one contact's normal history row (fastrest.jit.STATE_SIZE).
-constexpr int STATE = 4;
+constexpr int STATE = FASTREST_STATE_SIZE;
 
 struct Body {
   double E, nu, Sy, Et;    // the simulation's pressure units; Et = 0: no hardening
@@ -38,16 +40,18 @@ struct Law {
 };
 
 struct Laws {
-  std::vector<double> rows;   // all laws' rows, 16 doubles each
-  std::vector<double> area;   // A* on the same cells: [center, 1/half_width, c0..c5] each
+  std::vector<double> rows;   // all laws' rows, LawFile::ROW doubles each
+  std::vector<double> area;   // A* on the same cells: [center, 1/half_width, c0..c5] (LawFile::AREA_ROW) each
   std::vector<Law> law;
 };
 
 //! A number of the input script, finite; else a LAMMPS error "WHERE: WHAT = TEXT is not finite".
 double finite_number(LAMMPS_NS::LAMMPS *lmp, const std::string &where, const char *what, const char *text);
 
-//! A body's material from the script's texts of E, nu, Sy and Et (nullptr: Et = 0), checked:
-//! E > 0, 0 <= nu < 0.5, 0 < Sy < E, 0 <= Et < E, else a LAMMPS error naming the value.
+//! A body's material from the script's texts of E, nu, Sy and Et (nullptr: Et = 0), checked by
+//! fastrest.Material's rules: E > 0, 0 <= nu < 0.5, Sy > 0, 0 <= Et < E, else a LAMMPS error naming
+//! the value (all finite: LAMMPS reads no infinity). What fastrest refuses of a pair (Sy >= E',
+//! JGM eq 1) is its message, from the law's build.
 Body read_body(LAMMPS_NS::LAMMPS *lmp, const std::string &where, const char *E, const char *nu, const char *Sy,
                const char *Et);
 

@@ -20,35 +20,33 @@ static Fix *jgm_history(LAMMPS *lmp, int argc, char **argv) { return new FixJGMH
 static Fix *jgm_wall(LAMMPS *lmp, int argc, char **argv) { return new FixWallJGM(lmp, argc, argv); }
 static Compute *jgm_atom(LAMMPS *lmp, int argc, char **argv) { return new ComputeJGMAtom(lmp, argc, argv); }
 
+// one style of the plugin: creator v1 (a pair style) or v2 (fixes and computes take arguments)
+static void add(lammpsplugin_regfunc reg, void *lmp, lammpsplugin_t &plugin, const char *style, const char *name,
+                const char *info, lammpsplugin_factory1 *v1, lammpsplugin_factory2 *v2)
+{
+  plugin.style = style;
+  plugin.name = name;
+  plugin.info = info;
+  if (v1) plugin.creator.v1 = v1;
+  else plugin.creator.v2 = v2;
+  (*reg)(&plugin, lmp);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
-  lammpsplugin_regfunc reg = (lammpsplugin_regfunc) regfunc;
+  auto reg = (lammpsplugin_regfunc) regfunc;
   lammpsplugin_t plugin;
   plugin.version = FASTREST_LAMMPS_VERSION;
   plugin.author = "fastrest " FASTREST_VERSION;
   plugin.handle = handle;
-
-  plugin.style = "pair";
-  plugin.name = "jgm";
-  plugin.info = "Jackson-Green-Marghitu elastic-plastic sphere contact (fastrest " FASTREST_VERSION ")";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &jgm_pair;
-  (*reg)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "jgm/history";
-  plugin.info = "contact histories of pair_style jgm (fastrest " FASTREST_VERSION ")";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &jgm_history;
-  (*reg)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "wall/jgm";
-  plugin.info = "flat walls with the JGM contact law (fastrest " FASTREST_VERSION ")";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &jgm_wall;
-  (*reg)(&plugin, lmp);
-
-  plugin.style = "compute";
-  plugin.name = "jgm/atom";
-  plugin.info = "per-atom energies of pair_style jgm's contacts (fastrest " FASTREST_VERSION ")";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &jgm_atom;
-  (*reg)(&plugin, lmp);
+  add(reg, lmp, plugin, "pair", "jgm",
+      "Jackson-Green-Marghitu elastic-plastic sphere contact (fastrest " FASTREST_VERSION ")",
+      (lammpsplugin_factory1 *) &jgm_pair, nullptr);
+  add(reg, lmp, plugin, "fix", "jgm/history", "contact histories of pair_style jgm (fastrest " FASTREST_VERSION ")",
+      nullptr, (lammpsplugin_factory2 *) &jgm_history);
+  add(reg, lmp, plugin, "fix", "wall/jgm", "flat walls with the JGM contact law (fastrest " FASTREST_VERSION ")",
+      nullptr, (lammpsplugin_factory2 *) &jgm_wall);
+  add(reg, lmp, plugin, "compute", "jgm/atom",
+      "per-atom energies of pair_style jgm's contacts (fastrest " FASTREST_VERSION ")", nullptr,
+      (lammpsplugin_factory2 *) &jgm_atom);
 }

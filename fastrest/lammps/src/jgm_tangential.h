@@ -22,7 +22,7 @@ inline double contact_radius(const Laws &laws, const Law &law, const double *sta
 {
   double wm = state[0];
   if (!(wm > 0.0)) return 0.0;
-  const double *ar = laws.area.data() + 8 * fastrest_law_row(wm, law.first, law.last);
+  const double *ar = laws.area.data() + LawFile::AREA_ROW * fastrest_law_row(wm, law.first, law.last);
   double a_star = fastrest_law_estrin5((wm - ar[0]) * ar[1], ar[2], ar[3], ar[4], ar[5], ar[6], ar[7]) * s;
   return law.a_c1 * reff * std::sqrt(a_star > 0.0 ? a_star : 0.0);
 }
