@@ -6,7 +6,9 @@ page per name under ``api/generated/`` (not committed) from the templates in
 ``_templates/autosummary``, and this file writes one page per public module
 (``api/generated/modules``). The public modules are listed once, in
 ``stability.md`` (between its ``public-modules`` markers); the build fails unless the reference
-lists every name of their ``__all__`` exactly once and nothing else.
+lists every name of their ``__all__`` exactly once and nothing else, except the names of
+:data:`INTERNAL` (exported for fastrest's own modules, command line and tests, documented in the
+source, given no page).
 """
 import ast
 import importlib
@@ -105,6 +107,34 @@ def public_modules():
 
 PUBLIC = public_modules()
 
+#: Names in the ``__all__`` of a public module that the reference gives no page, with why: helpers
+#: that fastrest's own modules, command line and tests share, and the bounds the code checks its
+#: inputs against (an input past one is refused with a message giving the bound), which users do
+#: not set. They are internal (stability.md); a reference to one renders as plain code.
+INTERNAL = {
+    "fastrest.forward.forward_values_excess": "documented internal (the rough solvers' onset path)",
+    "fastrest.force_law.check_state_count": "the allocation check of ContactLaw.new_state and cuda.new_state",
+    "fastrest.force_law.MAX_CONTACTS": "bound of ContactLaw.new_state",
+    "fastrest.export.grid.TOL_MIN": "bound of --tol",
+    "fastrest.export.grid.MAX_NODES": "bound of the grid's size",
+    "fastrest.export.grid.MIN_CHECK_POINTS": "bound of --check-points",
+    "fastrest.export.grid.MAX_CHECK_POINTS": "bound of --check-points",
+    "fastrest.export.velocity.TOL_MIN": "bound of --tol",
+    "fastrest.export.velocity.MAX_ROWS": "bound of a table's rows",
+    "fastrest.export.velocity.MAX_PAIRS": "bound of a pairs file",
+    "fastrest.export.velocity.MAX_PAIRS_BYTES": "bound of a pairs file",
+    "fastrest.export.velocity.pair_from_options": "the command line's options as a Pair",
+    "fastrest.export.c_header.MAX_MATERIALS": "bound of --materials",
+    "fastrest.figures.MAX_DPI": "bound of --dpi",
+    "fastrest.tables.GRID_COUNTS": "bounds of a grid's node counts",
+    "fastrest.tables.EPS_Y_AR_BINDS": "where the kernels check a/R = 1 per point",
+    "fastrest.tables.PARALLEL_MIN_POINTS": "where the batch kernels start threads",
+    "fastrest.tables.error.SAFETY": "the build's margin below tol (docs/tables.md)",
+    "fastrest.tables.error.SIGN_CHANGE_FLOOR": "the error metric's floor (docs/tables.md)",
+    "fastrest.cuda.THREADS_PER_BLOCK": "launch configuration of the batch kernels",
+    "fastrest.cuda.ROUGH_BLOCKS": "launch configuration of rough_impact",
+}
+
 
 def _attr(mod, name):
     """``mod.name``, importing a submodule of that name if it is not an attribute yet."""
@@ -191,10 +221,23 @@ def _listed_in(page):
     return out
 
 
+def _internal_keys():
+    """{key: full name} of the names of :data:`INTERNAL` (each must be in its module's ``__all__``)."""
+    keys, problems = {}, []
+    for full in INTERNAL:
+        modname, name = _split(full)
+        if modname is None or name not in importlib.import_module(modname).__all__:
+            problems.append(f"{full}: in conf.py's INTERNAL but not in the __all__ of a public module")
+            continue
+        keys[_key(modname, name, _attr(importlib.import_module(modname), name))] = full
+    return keys, problems
+
+
 def check_reference():
-    """Every name of every public ``__all__`` listed once in the tables of api/*.rst, nothing else;
-    returns {key: listed full name}."""
-    problems, homes = [], {}
+    """Every name of every public ``__all__`` listed once in the tables of api/*.rst, nothing else,
+    except the names of :data:`INTERNAL` (listed nowhere); returns {key: listed full name}."""
+    internal, problems = _internal_keys()
+    homes = {}
     for full in listed_names():
         modname, name = _split(full)
         if modname is None or name not in importlib.import_module(modname).__all__:
@@ -202,6 +245,8 @@ def check_reference():
             continue
         obj = _attr(importlib.import_module(modname), name)
         key = _key(modname, name, obj)
+        if key in internal:
+            problems.append(f"{full}: listed but internal (conf.py's INTERNAL: {internal[key]})")
         if key in homes:
             problems.append(f"{full}: listed twice (also as {homes[key]})")
         homes[key] = full
@@ -212,7 +257,7 @@ def check_reference():
             if inspect.ismodule(obj):
                 if obj.__name__ not in PUBLIC:
                     problems.append(f"{modname}.{name}: exports module {obj.__name__}, not public (stability.md)")
-            elif _key(modname, name, obj) not in homes:
+            elif _key(modname, name, obj) not in homes and _key(modname, name, obj) not in internal:
                 problems.append(f"{modname}.{name}: public (stability.md) but in no table of docs/api/*.rst")
     pages = re.findall(r"^   generated/modules/(\S+)$", (API / "index.rst").read_text(encoding="utf-8"), re.M)
     if pages != PUBLIC:
@@ -250,11 +295,12 @@ def write_module_pages(app=None):
         lines = [modname, "=" * len(modname), "", f".. automodule:: {modname}", "   :no-members:", ""]
         subs = [_attr(mod, n).__name__ for n in mod.__all__ if inspect.ismodule(_attr(mod, n))]
         names = [(n, _attr(mod, n)) for n in mod.__all__ if not inspect.ismodule(_attr(mod, n))]
+        names = [(n, o) for n, o in names if _key(modname, n, o) in HOMES]   # not the INTERNAL ones
         if subs:
             lines += ["Modules: " + ", ".join(f":mod:`{s}`" for s in subs), ""]
         if names:
-            lines += [f"Names exported by ``{modname}`` (each is documented once; a name exported by several",
-                      "modules links to its page):", "", ".. autosummary::", "   :nosignatures:", ""]
+            lines += [f"Names ``{modname}`` exports for users (each is documented once; a name exported by",
+                      "several modules links to its page):", "", ".. autosummary::", "   :nosignatures:", ""]
             for n, o in names:
                 full = _summary_name(modname, n, o)
                 lines += [f"   {full[len(modname) + 1:]}" if _split(full)[0] == modname else f"   ~{full}"]

@@ -27,7 +27,7 @@ __all__ = ["warn_deprecated", "alias", "module_getattr", "keyword_only"]
 _F = TypeVar("_F", bound=Callable[..., Any])
 
 #: The release after which deprecated names and forms may go.
-REMOVED_IN = "0.3"
+REMOVED_IN = "0.4"
 
 # (module, name) -> (function returning the object, the replacement as users should write it)
 _ALIASES: dict[tuple[str, str], tuple[Callable[[], Any], str]] = {}

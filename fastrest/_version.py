@@ -1,2 +1,2 @@
 #: The installed fastrest version (a PEP 440 string).
-__version__ = "0.2.0"
+__version__ = "0.3.0"
