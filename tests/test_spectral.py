@@ -307,3 +307,23 @@ def test_exports():
         assert name in spectral.__all__
         if name in rough.__all__:
             assert getattr(rough, name) is getattr(spectral, name)
+
+
+def test_spectral_surface_takes_load_topographys_reading_options(tmp_path):
+    """A file read with the options load_topography takes (periodic, detrend, ...) gives the
+    surface of the map load_topography reads with them; with a map already read they are refused."""
+    import SurfaceTopography as ST
+    from fastrest.rough import load_topography
+
+    t = self_affine(n=64)
+    path = tmp_path / "map.x3p"
+    ST.Topography(t.heights, (64 * t.dx, 64 * t.dy), unit="m", periodic=False).to_x3p(str(path))
+    s = spectral_surface(path, STEEL, periodic=True, detrend="mean")
+    read = load_topography(path, periodic=True, detrend="mean")
+    assert read.periodic is True
+    ref = spectral_surface(read, STEEL)
+    assert (s.R_a, s.gw.eta, s.gw.sigma, s.gw.A_n) == (ref.R_a, ref.gw.eta, ref.gw.sigma, ref.gw.A_n)
+    with pytest.raises(ValueError, match="periodic: options for reading a map"):
+        spectral_surface(read, STEEL, periodic=True)
+    with pytest.raises(ValueError, match="detrend: options for reading a map"):
+        spectral_surface(t, STEEL, detrend="mean")

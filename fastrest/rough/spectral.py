@@ -155,12 +155,17 @@ class SpectralGW:
         return self.eta * self.A_n
 
 
-def _as_topography(t: Any) -> Topography:
+def _as_topography(t: Any, **options: Any) -> Topography:
     """A :class:`~fastrest.rough.Topography`: ``t`` itself, what :func:`load_topography` reads from
-    a path or a SurfaceTopography object, or an object with heights, dx, dy and periodic checked by
-    the Topography constructor."""
+    a path or a SurfaceTopography object (with its reading ``options``), or an object with heights,
+    dx, dy and periodic checked by the Topography constructor (reading options are then a
+    ValueError, as for a Topography)."""
     if isinstance(t, (Topography, str, os.PathLike)) or (hasattr(t, "nb_grid_pts") and hasattr(t, "dim")):
-        return as_topography(t)
+        return as_topography(t, **options)
+    given = [k for k, v in options.items() if v is not None]
+    if given:
+        raise ValueError(f"{', '.join(given)}: options for reading a map; this {type(t).__name__} is already a map "
+                         "(give them with a file path or a SurfaceTopography topography)")
     if isinstance(t, (np.ndarray, list, tuple)) or not all(hasattr(t, a) for a in ("heights", "dx", "dy", "periodic")):
         raise TypeError("topography must be a fastrest.rough.Topography (see load_topography), a file path, a "
                         "SurfaceTopography topography, or an object with heights (m), dx, dy (m) and periodic; "
@@ -345,7 +350,9 @@ def gw_from_moments(m0: float, m2: float, m4: float, A_n: float) -> SpectralGW:
 
 
 def spectral_surface(topography: Any, material: Any, *, method: str = "grid", A_n: float | None = None,
-                     et_ratio: float | None = None, loading: Any = None) -> RoughSurface:
+                     et_ratio: float | None = None, loading: Any = None, detrend: str | None = None,
+                     cutoff: float | None = None, unit: str | None = None,
+                     physical_size: tuple[float, float] | None = None, periodic: bool | None = None) -> RoughSurface:
     """Statistical (Greenwood-Williamson) :class:`RoughSurface` of a height map, from its moments.
 
     Parameters
@@ -362,6 +369,10 @@ def spectral_surface(topography: Any, material: Any, *, method: str = "grid", A_
         Nominal area (m^2); default the map's area nx dx ny dy.
     et_ratio, loading : optional
         Strain hardening and loading law, as in :class:`RoughSurface`.
+    detrend, cutoff, unit, physical_size, periodic : optional
+        How a file path or a SurfaceTopography topography is read, as in
+        :func:`~fastrest.rough.load_topography` (default: its defaults); a ValueError with a map
+        already read.
 
     Returns
     -------
@@ -398,7 +409,8 @@ def spectral_surface(topography: Any, material: Any, *, method: str = "grid", A_
     >>> s.kind
     'statistical'
     """
-    t = _as_topography(topography)
+    t = _as_topography(topography, detrend=detrend, cutoff=cutoff, unit=unit, physical_size=physical_size,
+                       periodic=periodic)
     m = spectral_moments(t, method=method)
     for name, v in (("m2_x", m.m2_x), ("m2_y", m.m2_y), ("m4_x", m.m4_x), ("m4_y", m.m4_y)):
         if not v > 0.0:

@@ -11,6 +11,7 @@ if TYPE_CHECKING:
 import math
 import time
 
+import numba
 import numpy as np
 
 from .._validation import as_float_array, check_bool, check_finite_positive, warn
@@ -21,7 +22,7 @@ from .heights import gaussian_summits
 from .result import RoughImpact
 from .surface import RoughSurface
 
-__all__ = ["sweep", "surface_from_params", "SweepResults"]
+__all__ = ["sweep", "surface_from_params", "SweepResults", "worker_threads"]
 
 #: What :func:`sweep` records for a surface it cannot build or evaluate (``on_error="report"``):
 #: the errors of the model's domain and of its inputs. Anything else (MemoryError, a bug) raises.
@@ -156,13 +157,36 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
     return RoughSurface(material, R_a, heights=heights, gw=gw, radii=radii, et_ratio=et_ratio, loading=loading)
 
 
+def worker_threads() -> int | None:
+    """Threads of the Dask worker running the calling task (its ``threads_per_worker``), or None
+    outside a Dask worker (or without ``distributed``)."""
+    try:
+        from distributed import get_worker
+    except ImportError:
+        return None
+    try:
+        worker = get_worker()
+    except ValueError:  # not in a worker's task
+        return None
+    n = getattr(worker, "nthreads", None)
+    if n is None:
+        n = getattr(getattr(worker, "state", None), "nthreads", None)
+    return int(n) if n else None
+
+
 def _sweep_task(factory, params, array_keys, *args):
     """One parameter set (module-level, so Dask can ship it by reference); with ``report`` (the
-    last argument) an error of :data:`SURFACE_ERRORS` is returned, not raised."""
+    last argument) an error of :data:`SURFACE_ERRORS` is returned, not raised. In a Dask worker,
+    Numba's kernels run on the worker's own threads (``threads_per_worker``), not on every core
+    of the machine in every worker."""
     k = len(array_keys)
     params = dict(params)
     params.update(zip(array_keys, args[:k]))
     V1, M, unloading, extrapolate, report = args[k:]
+    threads = worker_threads()
+    before = numba.get_num_threads()
+    if threads is not None:  # numba's setting is per calling thread: this task's only
+        numba.set_num_threads(max(1, min(threads, numba.config.NUMBA_NUM_THREADS)))
     try:
         surface = factory(**params)
         return surface.impact(V1, M, unloading, extrapolate=extrapolate)
@@ -170,6 +194,8 @@ def _sweep_task(factory, params, array_keys, *args):
         if not report:
             raise
         return exc
+    finally:
+        numba.set_num_threads(before)
 
 
 def _rebuild_surface(material, R_a=None, heights=None, gw=None, et_ratio=None, loading=None, radii=None):
@@ -203,7 +229,9 @@ def sweep(surfaces: Iterable[Any], V1: ArrayLike, M: float, unloading: str = "jc
         (explicit heights) and V1 are scattered once each (the same array object is shipped once
         even if several parameter sets use it). A worker lost mid-sweep does not
         fail it: its tasks run elsewhere, and surfaces whose data or task was lost are submitted
-        again (:data:`SWEEP_ATTEMPTS` rounds). Without a client everything runs here.
+        again (:data:`SWEEP_ATTEMPTS` rounds). In each worker, the task's Numba kernels run on
+        the worker's ``threads_per_worker`` threads, not on every core of
+        the machine in every worker. Without a client everything runs here, on Numba's threads.
     scatter_min : int
         Smallest array (elements) scattered rather than sent with its task.
     on_error : {"report", "raise"}
@@ -354,7 +382,11 @@ def _results(out, v, masses, unloading):
     errors = [(i, r) for i, r in enumerate(out) if isinstance(r, BaseException)]
     if errors:
         i, exc = errors[0]
+        # two lines at most: the first error's first line, cut; the whole of each is in .errors
+        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        reason = reason if len(reason) <= 120 else reason[:117] + "..."
         warn(f"{len(errors)} of {len(out)} surfaces failed and have NaN results (the first, surfaces[{i}]: "
-             f"{type(exc).__name__}: {exc}); see the result's .errors and .ok, or on_error='raise'", RuntimeWarning)
+             f"{type(exc).__name__}: {reason});\nsee the result's .errors (each surface's whole error) and .ok, or "
+             "on_error='raise'", RuntimeWarning)
     return SweepResults([_failed(v, m, unloading) if isinstance(r, BaseException) else r
                          for r, m in zip(out, masses)], errors)

@@ -149,7 +149,9 @@ def available_memory() -> int | None:
 
 def _import_st():
     try:
-        import SurfaceTopography  # noqa: F401
+        with warnings.catch_warnings():  # NuMPI (SurfaceTopography's MPI layer) without mpi4py: its stub is what we use
+            warnings.filterwarnings("ignore", "Could not import mpi4py", ImportWarning)
+            import SurfaceTopography  # noqa: F401
         from SurfaceTopography import open_topography
         from SurfaceTopography.HeightContainer import UniformTopographyInterface
         from SurfaceTopography.Support.UnitConversion import get_unit_conversion_factor, length_units
