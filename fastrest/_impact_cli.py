@@ -125,12 +125,10 @@ def _cmd_e(args):
     imp = _impact(args)
     two = any(getattr(args, "sphere2_" + k) is not None for k in _SPHERE2_KEYS)
     crit = imp.critical_values()
-    V = np.asarray(args.V, dtype=float)
-    try:
-        v1: Any = imp.v1_star(V, "jcg", extrapolate=args.extrapolate)  # every model is printed; JCG ends first
-    except ValueError as exc:
-        msg = str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")
-        raise ValueError(f"--V: {msg}") from None
+    # every speed the model covers is printed; each one past its end gets its own error line
+    # (JCG ends first: every model is printed)
+    V, refused = _speeds_covered(imp, np.asarray(args.V, dtype=float), args.extrapolate)
+    v1: Any = imp.v1_star(V, "jcg", extrapolate=args.extrapolate)
     with warnings.catch_warnings(record=True) as caught:
         # record the model's own warnings (validity, extrapolation) for the output; others pass through
         warnings.simplefilter("always", ValidityWarning)
@@ -163,8 +161,11 @@ def _cmd_e(args):
     for w in caught:
         if not issubclass(w.category, ValidityWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    code = _report_refused(refused)
     if args.json:
         out = {"critical": crit, "impacts": rows, "warnings": notes}
+        if refused:
+            out["refused"] = [{"V": v, "error": msg} for v, msg in refused]
         if two:
             out["bodies"] = "two spheres"
         if imp.et_ratio > 0.0:
@@ -173,7 +174,7 @@ def _cmd_e(args):
             out["models"] = names
         json.dump(out, sys.stdout, indent=2, allow_nan=False)  # strict JSON: no NaN/Infinity
         print()
-        return 0
+        return code
     print(_headline(imp, two))
     if imp.et_ratio > 0.0:
         print(f"  strain hardening: Ghaednia et al. (2019) loading, Et/E = {imp.et_ratio:.6g} (docs/model.md section 12)")
@@ -196,7 +197,34 @@ def _cmd_e(args):
               "published formulas, not clipped to e <= 1")
     for n in notes:
         print(f"  warning: {n}")
-    return 0
+    return code
+
+
+def _speeds_covered(imp, V, extrapolate):
+    """(the speeds of V the model covers, [(speed, why) of each it refuses]); a ValueError naming
+    the first refused speed when none is covered."""
+    try:
+        imp.v1_star(V, "jcg", extrapolate=extrapolate)
+        return V, []
+    except ValueError:
+        pass
+    kept, refused = [], []
+    for v in V.ravel():
+        try:
+            imp.v1_star(float(v), "jcg", extrapolate=extrapolate)
+            kept.append(float(v))
+        except ValueError as exc:
+            refused.append((float(v), str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")))
+    if not kept:
+        raise ValueError(f"--V: {refused[0][1]}")
+    return np.array(kept), refused
+
+
+def _report_refused(refused):
+    """One error line on stderr per refused speed; the exit status (1 if any, else 0)."""
+    for v, msg in refused:
+        print(f"fastrest e: error: --V {v:g}: {msg}", file=sys.stderr)
+    return 1 if refused else 0
 
 
 def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argparse.ArgumentParser:

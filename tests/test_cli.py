@@ -121,6 +121,27 @@ def test_e_past_425_is_an_error_unless_extrapolating(capsys):
     assert any("425" in w for w in doc["warnings"])
 
 
+def test_e_keeps_the_speeds_the_model_covers(capsys):
+    """Speeds past the model's end among valid ones: every valid speed is printed (its e that of
+    Impact.e alone), each refused one gets its own error line naming it, and the exit status is 1;
+    in JSON the refused speeds are listed."""
+    imp = readme_impact()
+    v_lim = fastrest.limit(imp.eps_y, imp.nu).v1_star * imp.V_c
+    past = [v_lim * 1.2, v_lim * 3.0]
+    args = README_ARGS[:README_ARGS.index("--V")] + ["--V", "0.5", repr(past[0]), "2", repr(past[1])]
+    code, out, err = run(args, capsys)
+    assert code == 1
+    assert [ln for ln in err.splitlines() if "error: --V" in ln] == [
+        ln for ln in err.splitlines() if "error: --V " in ln and "425" in ln] and err.count("error: --V ") == 2
+    assert f"--V {past[0]:g}:" in err and f"--V {past[1]:g}:" in err
+    code, out, err = run(args + ["--json"], capsys)
+    assert code == 1
+    doc = json.loads(out)
+    assert [r["V"] for r in doc["impacts"]] == [0.5, 2.0]
+    assert [r["e_jcg"] for r in doc["impacts"]] == pytest.approx(list(imp.e([0.5, 2.0])), rel=1e-12)
+    assert [r["V"] for r in doc["refused"]] == past and all("425" in r["error"] for r in doc["refused"])
+
+
 def test_e_single_speed_no_numpy_warning(capsys):
     """One --V: no FutureWarning from NumPy's broadcast views reaches the user or the output."""
     args = README_ARGS[:README_ARGS.index("--V")] + ["--V", "1", "--json"]
