@@ -273,6 +273,23 @@ def test_cli_table_and_json(tmp_path, capsys):
     assert err.startswith("fastrest rough: error: ") and "--physical-size is not accepted" in err
 
 
+def test_cli_keeps_the_speeds_the_model_covers(tmp_path, capsys):
+    """A speed past the model's end among valid ones: the valid rows are printed (the same e as
+    alone), the refused speed gets its own error line, the exit status is 1."""
+    z, dx, dy = caps_map(CAPS)
+    path = str(write_x3p(tmp_path, z, dx, dy))
+    head = ARGS[:ARGS.index("--V")]
+    assert cli.main(["rough", path, *head, "--V", "0.01", "1e4", "0.3", "--detrend", "none", "--json"]) == 1
+    captured = capsys.readouterr()
+    d = json.loads(captured.out)
+    assert [r["V"] for r in d["impacts"]] == [0.01, 0.3] and [r["V"] for r in d["refused"]] == [1e4]
+    assert captured.err.count("fastrest rough: error: --V 10000: ") == 1
+    assert cli.main(["rough", path, *ARGS, "--detrend", "none", "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)
+    assert [r["e"] for r in d["impacts"]] == [r["e"] for r in alone["impacts"]]
+    assert cli.main(["rough", path, *head, "--V", "1e4", "--detrend", "none"]) == 2  # none covered
+
+
 def test_without_surfacetopography(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "SurfaceTopography", None)
     with pytest.raises(ImportError, match=r'pip install "fastrest\[topography\]"'):

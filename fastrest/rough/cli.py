@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 from typing import Any
 
 import numpy as np
@@ -28,8 +29,7 @@ def _cmd_rough(args: argparse.Namespace) -> int:
             surface = from_topography(args.file, material, detrend=args.detrend, cutoff=args.cutoff,
                                       unit=args.unit, physical_size=args.physical_size,
                                       periodic=True if args.periodic else None)
-            r = surface.impact(np.asarray(args.V, dtype=float), args.M, args.unloading,
-                               extrapolate=args.extrapolate)
+            r, refused = _impacts_covered(surface, np.asarray(args.V, dtype=float), args)
     except ImportError as exc:  # SurfaceTopography missing: say how to install it
         raise ValueError(str(exc)) from None
     except ValueError as exc:
@@ -47,10 +47,17 @@ def _cmd_rough(args: argparse.Namespace) -> int:
                "radius_min": float(radii.min()), "radius_median": float(np.median(radii)),
                "radius_max": float(radii.max()), "height_sigma": float(surface.sigma),
                "plasticity_index": float(surface.plasticity_index)}
+    for v, msg in refused:  # each speed past the model's end: its own line; the others are printed
+        print(f"fastrest rough: error: --V {v:g}: {msg.replace('extrapolate=True', '--extrapolate')}", file=sys.stderr)
+    code = 1 if refused else 0
     if args.json:
-        print(json.dumps({"topography": summary, "M": args.M, "unloading": args.unloading,
-                          "detrend": args.detrend or ("mean" if found.periodic else "height"), "cutoff": args.cutoff, "impacts": rows}, indent=2))
-        return 0
+        doc = {"topography": summary, "M": args.M, "unloading": args.unloading,
+               "detrend": args.detrend or ("mean" if found.periodic else "height"), "cutoff": args.cutoff,
+               "impacts": rows}
+        if refused:
+            doc["refused"] = [{"V": v, "error": msg.replace("extrapolate=True", "--extrapolate")} for v, msg in refused]
+        print(json.dumps(doc, indent=2))
+        return code
     print(f"rough surface from {found.source}: {found.n_pixels} pixels, dx = {found.dx:.6g} m, "
           f"dy = {found.dy:.6g} m, {'periodic' if found.periodic else 'non-periodic'}")
     print(f"  summits: {found.n_summits} ({found.n_found} strict 8-neighbour maxima, "
@@ -63,7 +70,28 @@ def _cmd_rough(args: argparse.Namespace) -> int:
     for row in rows:
         print(f"  {row['V']:10.4g} {row['e']:10.6f} {row['loss']:11.4e} {row['n_contact']:10d} "
               f"{row['n_yielded']:10d} {row['force_max']:14.6g}")
-    return 0
+    return code
+
+
+def _impacts_covered(surface, V, args):
+    """(the impacts at the speeds of V the model covers, [(speed, why) of each refused]); the first
+    refusal raised when no speed is covered."""
+    try:
+        return surface.impact(V, args.M, args.unloading, extrapolate=args.extrapolate), []
+    except ValueError as exc:
+        if V.size < 2:
+            raise
+        first = exc
+    kept, refused = [], []
+    for v in V.ravel():
+        try:
+            surface.impact(float(v), args.M, args.unloading, extrapolate=args.extrapolate)
+            kept.append(float(v))
+        except ValueError as exc:
+            refused.append((float(v), str(exc)))
+    if not kept:
+        raise first
+    return surface.impact(np.array(kept), args.M, args.unloading, extrapolate=args.extrapolate), refused
 
 
 def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argparse.ArgumentParser:
