@@ -1,7 +1,7 @@
 """Deprecations, written once: old names and old call forms keep working for one release and warn.
 
 Every deprecation warns :class:`DeprecationWarning` naming the replacement, attributed to the
-caller's line. Three forms:
+caller's line. Four forms:
 
 * :func:`alias` + :func:`module_getattr`: an old module attribute (``fastrest.materials.Impact``,
   ``fastrest.direct.e_star``) resolved by the module's ``__getattr__``. The object is registered by
@@ -9,6 +9,7 @@ caller's line. Three forms:
   imports upward: the higher module registers the alias (``fastrest.impact`` registers
   ``fastrest.materials.Impact``), and a package's modules are all imported with the package;
 * :func:`keyword_only`: options that became keyword-only, still accepted positionally;
+* :func:`renamed`: a parameter with a new name, still accepted by its old keyword;
 * :func:`warn_deprecated`: anything else (a deprecated method, a compiled function's old
   argument order, warned when it is compiled).
 
@@ -22,7 +23,7 @@ import functools
 import inspect
 import warnings
 
-__all__ = ["warn_deprecated", "alias", "module_getattr", "keyword_only"]
+__all__ = ["warn_deprecated", "alias", "module_getattr", "keyword_only", "renamed"]
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
@@ -117,6 +118,26 @@ def keyword_only(*names: str, old: Callable[[tuple[Any, ...]], bool] | None = No
                                 " and ".join(f"{k}=..." for k in opts) + " (keyword-only)")
                 kwargs.update(moved)
                 args = args[:first]
+            return f(*args, **kwargs)
+
+        return cast(_F, checked)
+
+    return wrap
+
+
+def renamed(**names: str) -> Callable[[_F], _F]:
+    """Decorator: parameters renamed, given as ``old="new"``; a call that passes one by its old
+    keyword works and warns, naming the new keyword (positional calls are not affected)."""
+
+    def wrap(f: _F) -> _F:
+        @functools.wraps(f)
+        def checked(*args: Any, **kwargs: Any) -> Any:
+            for old, new in names.items():
+                if old in kwargs:
+                    if new in kwargs:
+                        raise TypeError(f"{f.__qualname__}() got values for both {old!r} and {new!r}")
+                    warn_deprecated(f"the keyword {old}= of {f.__qualname__}()", f"{new}=")
+                    kwargs[new] = kwargs.pop(old)
             return f(*args, **kwargs)
 
         return cast(_F, checked)

@@ -206,8 +206,9 @@ def _speeds_covered(imp, V, extrapolate):
     try:
         imp.v1_star(V, "jcg", extrapolate=extrapolate)
         return V, []
-    except ValueError:
-        pass
+    except ValueError as exc:
+        if not np.all(np.isfinite(V) & (V >= 0.0)):  # bad input, not a speed past the model's end
+            raise ValueError("--V: " + str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")) from None
     kept, refused = [], []
     for v in V.ravel():
         try:

@@ -18,8 +18,8 @@ import numpy as np
 
 __all__ = ["EPS_Y_VALIDATED", "NU_VALIDATED", "OMEGA_M_STAR_MAX", "EDGE_TOL", "OMEGA_STAR_SWITCH",
            "ValidityWarning", "ExtrapolationWarning", "as_float_array", "real_scalar", "check_bool",
-           "check_count", "short_repr", "broadcast_named", "broadcast_inputs", "kernel_array", "shaped", "check_finite_result",
-           "check_finite_positive", "check_nu", "check_eps_y", "check_velocity", "warn",
+           "check_count", "check_tol", "short_repr", "broadcast_named", "broadcast_inputs", "kernel_array", "shaped",
+           "check_finite_result", "check_finite_positive", "check_nu", "check_eps_y", "check_velocity", "warn",
            "warn_if_outside_validated"]
 
 # Range the paper validated (JGM 2010, section 3.3 and end of section 3.3).
@@ -179,6 +179,15 @@ def check_count(x: object, name: str, lo: int, hi: int) -> int:
     if not lo <= v <= hi:
         raise ValueError(f"{name} must be a whole number in [{lo}, {hi}]; got {_short(x)}")
     return v
+
+
+def check_tol(tol: object, tol_min: float, meaning: str) -> float:
+    """A tolerance ``tol_min <= tol < 1`` (a float): TypeError unless one real number, ValueError
+    otherwise, with ``meaning`` (what the tolerance bounds, and why its floor) in the message."""
+    t = real_scalar(tol, "tol")
+    if not (tol_min <= t < 1.0):
+        raise ValueError(f"tol must be in [{tol_min:g}, 1) ({meaning}); got {t!r}")
+    return t
 
 
 def broadcast_named(*named):

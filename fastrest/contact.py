@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 import numpy as np
 
+from ._doc import doc, paragraphs
 from ._jit import jit
 from ._validation import broadcast_inputs, check_eps_y, check_finite_result, check_nu, shaped
 from . import loading as _loading
@@ -29,6 +30,43 @@ from .loading.jackson_green import omega_star_limit_kernel
 
 
 __all__ = ["P_star", "A_star", "omega_star_limit"]
+
+
+#: The parameters and Raises of every function of a loading law evaluated at w
+#: (:func:`evaluate_law`: :func:`P_star`, :func:`A_star`, :func:`fastrest.loading_energy`,
+#: :func:`fastrest.W_star`), written once (fastrest._doc).
+LAW_DOC = paragraphs(
+    law_params="""
+        Parameters
+        ----------
+        w : float or array_like
+            Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
+            (:func:`fastrest.omega_star_limit`; not limited to w* = 425).
+        eps_y : float or array_like
+            Sy/E' (-), > 0 (validated range 0.0005-0.01).
+        nu : float or array_like
+            Poisson's ratio of the yielding material, 0 <= nu < 0.5.
+        et_ratio : float or array_like, optional
+            Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; 0 (default) is
+            elastic-perfectly plastic. Above 0 the law is Ghaednia et al. (2019)
+            (:mod:`fastrest.loading.ghaednia`).
+        loading : {None, "jackson-green", "ghaednia"}, optional
+            The loading law (:mod:`fastrest.loading`); None picks Jackson-Green where every
+            ``et_ratio`` is 0 and Ghaednia et al. otherwise (equal bit for bit at 0).
+        """,
+    law_raises="""
+        Raises
+        ------
+        TypeError
+            An input is not a real number or array of them (strings, booleans, None, complex).
+        ValueError
+            w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
+            w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1); an
+            unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``; shapes that do not
+            broadcast.
+        """,
+)
+
 
 @jit
 def _p_star_array(w, eps_y, nu, et_ratio, law, out):
@@ -77,41 +115,19 @@ def evaluate_law(kernel, w, eps_y, nu, et_ratio=0.0, loading=None):
     return shaped(out, shape)
 
 
+@doc(LAW_DOC)
 def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
            loading: str | None = None) -> float | NDArray[np.float64]:
     """Normalised contact force P* = P/P_c of the loading law (JG: JGM eqs 9, 14).
 
-    Parameters
-    ----------
-    w : float or array_like
-        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
-        (:func:`omega_star_limit`; not limited to w* = 425).
-    eps_y : float or array_like
-        Sy/E' (-), > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; 0 (default) is
-        elastic-perfectly plastic. Above 0 the law is Ghaednia et al. (2019)
-        (:mod:`fastrest.loading.ghaednia`).
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks Jackson-Green where every
-        ``et_ratio`` is 0 and Ghaednia et al. otherwise (equal bit for bit at 0).
+    {law_params}
 
     Returns
     -------
     float or ndarray
         P* (-), broadcast over the inputs (a float if all are scalars).
 
-    Raises
-    ------
-    TypeError
-        An input is not a real number or array of them (strings, booleans, None, complex).
-    ValueError
-        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1); an
-        unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``; shapes that do not
-        broadcast.
+    {law_raises}
 
     Notes
     -----
@@ -134,54 +150,30 @@ def P_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike
     return evaluate_law(_p_star_array, w, eps_y, nu, et_ratio, loading)
 
 
+@doc(LAW_DOC)
 def A_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
            loading: str | None = None) -> float | NDArray[np.float64]:
     """Normalised contact area A* = A/A_c of the loading law (JG: JGM eqs 8, 15) (-).
 
-    Parameters
-    ----------
-    w : float or array_like
-        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
-        (:func:`omega_star_limit`; not limited to w* = 425).
-    eps_y : float or array_like
-        Sy/E' (-), > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; 0 (default) is
-        elastic-perfectly plastic. Above 0 the law is Ghaednia et al. (2019)
-        (:mod:`fastrest.loading.ghaednia`).
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks Jackson-Green where every
-        ``et_ratio`` is 0 and Ghaednia et al. otherwise (equal bit for bit at 0).
+    Hertz A* = w for w <= 1.9 (JGM eq 15), the Jackson-Green (2005) fit A* = w (w/1.9)^B with
+    B = 0.14 exp(23 eps_y) above (eqs 8, 10).
+
+    {law_params}
 
     Returns
     -------
     float or ndarray
-        A* (-), broadcast over the inputs (a float if all are scalars).
+        A* (-), broadcast over the inputs (a float if all are scalars); continuous at w = 1.9.
 
-    Raises
-    ------
-    TypeError
-        An input is not a real number or array of them (strings, booleans, None, complex).
-    ValueError
-        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1); an
-        unknown ``loading``, or et_ratio > 0 with ``loading="jackson-green"``; shapes that do not
-        broadcast.
-
-    Notes
-    -----
-    Hertz A* = w for w <= 1.9 (JGM eq 15), the Jackson-Green (2005) fit A* = w (w/1.9)^B with
-    B = 0.14 exp(23 eps_y) above (eqs 8, 10); continuous at w = 1.9.
+    {law_raises}
 
     Examples
     --------
     >>> import fastrest
     >>> round(fastrest.A_star(10.0, 0.005, 0.33), 6)
     12.980177
-    >>> fastrest.A_star(1.0, 0.005, 0.33)
-    1.0
+    >>> fastrest.A_star([1.0, 1.9], 0.005, 0.33).tolist()  # Hertz up to w = 1.9
+    [1.0, 1.9]
     """
     return evaluate_law(_a_star_array, w, eps_y, nu, et_ratio, loading)
 

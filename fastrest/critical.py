@@ -16,11 +16,26 @@ import numpy as np
 from numba.core import types
 from numba.extending import overload
 
+from ._doc import doc, paragraphs
 from ._jit import jit, mul_rn
 
 __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
            "critical_interference", "critical_force", "critical_area", "critical_energy",
            "critical_velocity", "CriticalScales", "critical_scales", "yield_et_ratio"]
+
+# The parameters of the four critical scales, written once (fastrest._doc).
+_DOC = paragraphs(params="""
+    Parameters
+    ----------
+    C : float
+        C(nu) of the material that yields first (-), :func:`c_of_nu`.
+    Sy : float
+        Yield strength of the material that yields first (Pa), finite and > 0.
+    E_eff : float
+        Effective modulus E' (Pa), :func:`effective_modulus`.
+    R : float
+        Effective radius R' (m), :func:`effective_radius`.
+    """)
 
 # The jit NaN contract (docs/architecture.md): every function here returns NaN outside its domain
 # (an input not > 0 where it must be, a division by zero, a result that is not finite) and never
@@ -32,6 +47,16 @@ __all__ = ["c_of_nu", "effective_modulus", "effective_radius", "effective_mass",
 def _finite(x):
     """``x`` if it is finite, NaN otherwise (a result that overflowed lies outside the domain)."""
     return x if abs(x) < math.inf else math.nan
+
+
+@jit
+def _reduced(x1, x2):
+    """x1 x2/(x1 + x2), exactly x1 where x2 is inf (an effective radius or a reduced mass); NaN for
+    a value not > 0 or a result that is not finite."""
+    x1, x2 = np.float64(x1), np.float64(x2)
+    if not (x1 > 0.0 and x2 > 0.0):
+        return math.nan
+    return _finite(x1 if x2 == math.inf else x1 * x2 / (x1 + x2))
 
 
 @jit
@@ -160,10 +185,7 @@ def effective_radius(R1, R2):
     >>> effective_radius(0.01, math.inf), round(effective_radius(0.01, 0.02), 9)
     (0.01, 0.006666667)
     """
-    R1, R2 = np.float64(R1), np.float64(R2)
-    if not (R1 > 0.0 and R2 > 0.0):
-        return math.nan
-    return _finite(R1 if R2 == math.inf else R1 * R2 / (R1 + R2))
+    return _reduced(R1, R2)
 
 
 @jit
@@ -195,26 +217,17 @@ def effective_mass(m1, m2):
     >>> effective_mass(0.0327, math.inf), effective_mass(1.0, 3.0)
     (0.0327, 0.75)
     """
-    m1, m2 = np.float64(m1), np.float64(m2)
-    if not (m1 > 0.0 and m2 > 0.0):
-        return math.nan
-    return _finite(m1 if m2 == math.inf else m1 * m2 / (m1 + m2))
+    return _reduced(m1, m2)
 
 
 @jit
+@doc(_DOC)
 def critical_interference(C, Sy, E_eff, R):
     """Critical interference omega_c = (pi C Sy / (2 E'))^2 R (m): the interference at yield onset.
 
-    Parameters
-    ----------
-    C : float
-        C(nu) of the material that yields first (-), :func:`c_of_nu`.
-    Sy : float
-        Yield strength of the material that yields first (Pa), finite and > 0.
-    E_eff : float
-        Effective modulus E' (Pa), :func:`effective_modulus`.
-    R : float
-        Effective radius R' (m), :func:`effective_radius`.
+    JGM eq (4); the unit of the normalised interference w = omega/omega_c.
+
+    {params}
 
     Returns
     -------
@@ -223,7 +236,7 @@ def critical_interference(C, Sy, E_eff, R):
 
     Notes
     -----
-    JGM eq (4). NaN unless C, Sy, E', R > 0, and where the result overflows (a jit function: it
+    NaN unless C, Sy, E', R > 0, and where the result overflows (a jit function: it
     never raises; see :func:`critical_scales`). JGM Table 1 prints 1.335 um for
     these inputs, smaller by the factor (1 - nu^2)^2; fastrest implements the equation as printed
     (docs/model.md section 6).
@@ -242,19 +255,13 @@ def critical_interference(C, Sy, E_eff, R):
 
 
 @jit
+@doc(_DOC)
 def critical_force(C, Sy, E_eff, R):
     """Critical force P_c = (4/3) (R/E')^2 (pi C Sy / 2)^3 (N): the contact force at yield onset.
 
-    Parameters
-    ----------
-    C : float
-        C(nu) of the material that yields first (-), :func:`c_of_nu`.
-    Sy : float
-        Yield strength of the material that yields first (Pa), finite and > 0.
-    E_eff : float
-        Effective modulus E' (Pa), :func:`effective_modulus`.
-    R : float
-        Effective radius R' (m), :func:`effective_radius`.
+    JGM eq (6), equal to (4/3) E' sqrt(R) omega_c^1.5; the unit of the normalised force P* = P/P_c.
+
+    {params}
 
     Returns
     -------
@@ -263,7 +270,7 @@ def critical_force(C, Sy, E_eff, R):
 
     Notes
     -----
-    JGM eq (6), equal to (4/3) E' sqrt(R) omega_c^1.5. NaN unless C, Sy, E', R > 0, and where
+    NaN unless C, Sy, E', R > 0, and where
     the result overflows (a jit function: it never raises; see :func:`critical_scales`).
 
     Examples
@@ -279,28 +286,22 @@ def critical_force(C, Sy, E_eff, R):
 
 
 @jit
+@doc(_DOC)
 def critical_area(C, Sy, E_eff, R):
     """Critical contact area A_c = pi^3 (C Sy R / (2 E'))^2 (m^2), the area at the onset of yield.
 
-    Parameters
-    ----------
-    C : float
-        C(nu) of the material that yields first (-), :func:`c_of_nu`.
-    Sy : float
-        Yield strength of the material that yields first (Pa), finite and > 0.
-    E_eff : float
-        Effective modulus E' (Pa), :func:`effective_modulus`.
-    R : float
-        Effective radius R' (m), :func:`effective_radius`.
+    JGM eq (7), equal to pi R omega_c; the unit of the normalised area A* = A/A_c.
+
+    {params}
 
     Returns
     -------
     float
-        A_c (m^2), equal to pi R omega_c.
+        A_c (m^2).
 
     Notes
     -----
-    JGM eq (7). NaN unless C, Sy, E', R > 0, and where the result overflows (a jit function: it
+    NaN unless C, Sy, E', R > 0, and where the result overflows (a jit function: it
     never raises; see :func:`critical_scales`).
 
     Examples
@@ -316,28 +317,22 @@ def critical_area(C, Sy, E_eff, R):
 
 
 @jit
+@doc(_DOC)
 def critical_energy(C, Sy, E_eff, R):
     """Critical strain energy U_c = (pi C Sy)^5 R^3 / (60 E'^4) (J), stored at the onset of yield.
 
-    Parameters
-    ----------
-    C : float
-        C(nu) of the material that yields first (-), :func:`c_of_nu`.
-    Sy : float
-        Yield strength of the material that yields first (Pa), finite and > 0.
-    E_eff : float
-        Effective modulus E' (Pa), :func:`effective_modulus`.
-    R : float
-        Effective radius R' (m), :func:`effective_radius`.
+    JGM eq (23), equal to (2/5) P_c omega_c (eq 24): the unit of every normalised energy.
+
+    {params}
 
     Returns
     -------
     float
-        U_c (J), equal to (2/5) P_c omega_c (eq 24): the unit of every normalised energy.
+        U_c (J).
 
     Notes
     -----
-    JGM eq (23) (the Hertz energy (8/15) E' sqrt(R) omega_c^2.5, eqs 17-21). NaN unless C, Sy, E',
+    The Hertz energy (8/15) E' sqrt(R) omega_c^2.5 at omega_c (eqs 17-21). NaN unless C, Sy, E',
     R > 0, where E'^4 underflows and where the result overflows (a jit function: it never raises;
     see :func:`critical_scales`).
 

@@ -19,8 +19,8 @@ Numba code. Several materials in one batch call: :mod:`fastrest.scene`.
 """
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, overload
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 from numpy.typing import ArrayLike, NDArray
 import functools
 
@@ -33,7 +33,7 @@ from ._jit import compiled_entry, jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array,
                           check_velocity, kernel_array, real_scalar, warn, warn_if_outside_validated)
 from .curve_data import build_curve_data, check_inputs as check_curve_inputs, curve_array, curve_value
-from .fastpath import fast_scalar
+from .fastpath import curve_quantity, fast_scalar
 from .limits import speed_limit
 from .loading import LAWS, resolve as resolve_loading
 from .unloading import get as unloading_model, warn_if_unfitted
@@ -112,7 +112,7 @@ ExtrapolationWarning
 
 Notes
 -----
-{notes}
+From the curve's degree-5 cells (:func:`~fastrest.curve_data.curve_value`): {notes}
 
 Examples
 --------
@@ -134,7 +134,7 @@ _QUANTITIES = (
 )
 
 
-def _quantity_method(what):
+def _quantity_method(what: int) -> Callable[..., float | NDArray[np.float64]]:
     """The method for quantity ``what``: a scalar fast path, else the checked array path."""
     name, summary, returns, notes, example = _QUANTITIES[what]
 
@@ -207,7 +207,7 @@ class Curve:
     (20.0, 1.0)
     """
 
-    #: Read by curves pickled before hardening existed.
+    #: Class defaults (elastic-perfectly plastic, Jackson-Green) for a pickle that lacks the fields.
     et_ratio: float = 0.0
     loading: str = LAWS["jackson-green"].name
 
@@ -271,40 +271,10 @@ class Curve:
         return (f"the curve is extrapolated {past}; the extrapolated model ends at V1* = {end:.10g} for {mat} "
                 "(a larger v_max where a curve can reach it; fastrest.direct computes up to the end)")
 
-    if TYPE_CHECKING:  # what mypy sees: a scalar in gives a float out, a sequence an array
-        @overload
-        def omega_m(self, v1_star: float) -> float: ...
-        @overload
-        def omega_m(self, v1_star: Sequence[float]) -> NDArray[np.float64]: ...
-        @overload
-        def omega_m(self, v1_star: ArrayLike) -> float | NDArray[np.float64]: ...
-
-        def omega_m(self, v1_star: ArrayLike) -> float | NDArray[np.float64]:
-            return self._eval(0, v1_star)
-
-        @overload
-        def e(self, v1_star: float) -> float: ...
-        @overload
-        def e(self, v1_star: Sequence[float]) -> NDArray[np.float64]: ...
-        @overload
-        def e(self, v1_star: ArrayLike) -> float | NDArray[np.float64]: ...
-
-        def e(self, v1_star: ArrayLike) -> float | NDArray[np.float64]:
-            return self._eval(1, v1_star)
-
-        @overload
-        def loss(self, v1_star: float) -> float: ...
-        @overload
-        def loss(self, v1_star: Sequence[float]) -> NDArray[np.float64]: ...
-        @overload
-        def loss(self, v1_star: ArrayLike) -> float | NDArray[np.float64]: ...
-
-        def loss(self, v1_star: ArrayLike) -> float | NDArray[np.float64]:
-            return self._eval(2, v1_star)
-    else:
-        omega_m = _quantity_method(0)
-        e = _quantity_method(1)
-        loss = _quantity_method(2)
+    # a float in gives a float out, a sequence an array (fastrest.fastpath.CurveQuantity)
+    omega_m = curve_quantity(_quantity_method(0))
+    e = curve_quantity(_quantity_method(1))
+    loss = curve_quantity(_quantity_method(2))
 
 
 def _warn_past_limit(method: Callable[..., Any]) -> Any:

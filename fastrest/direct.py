@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from ._deprecation import alias, module_getattr
+from ._doc import doc, paragraphs
 from ._jit import jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, check_bool, check_eps_y, check_nu,
                           check_velocity, warn, warn_if_outside_validated)
@@ -33,6 +34,79 @@ from .loading import resolve as resolve_loading
 from .unloading import get as unloading_model, restitution_kernel, warn_if_unfitted
 
 __all__ = ["omega_m_exact", "e_exact", "loss_exact", "residual_exact", "solve"]
+
+# The parameters, Raises and Warns of the functions below, written once (fastrest._doc).
+_DOC = paragraphs(
+    params_material="""
+        Parameters
+        ----------
+        v1_star : float or array_like
+            Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
+            ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
+        eps_y : float or array_like
+            Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
+        nu : float or array_like
+            Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
+        """,
+    params_law="""
+        et_ratio : float or array_like, optional
+            Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
+            plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
+        loading : {None, "jackson-green", "ghaednia"}, optional
+            The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
+        """,
+    params="""
+        {params_material}
+        unloading : {"jcg", "etsion", "brake"}, optional
+            Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
+            eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
+            (:mod:`fastrest.unloading`).
+        extrapolate : bool, optional
+            Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
+            of eq 35 at w_m* = 10017.5). Default False.
+        {params_law}
+        """,
+    params_no_unloading="""
+        {params_material}
+        extrapolate : bool, optional
+            Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1. Default False.
+        {params_law}
+        """,
+    raises_type="""
+        Raises
+        ------
+        TypeError
+            A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
+            True or False.
+        """,
+    warns="""
+        Warns
+        -----
+        ValidityWarning
+            eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
+        ExtrapolationWarning
+            With ``extrapolate=True``, when a result lies past w_m* = 425.
+        """,
+    raises="""
+        {raises_type}
+        ValueError
+            v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+            that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
+            ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
+            limit and its V1*).
+
+        {warns}
+        """,
+    raises_no_unloading="""
+        {raises_type}
+        ValueError
+            v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
+            that do not broadcast; a speed past w_m* = 425 (without ``extrapolate``) or past a/R = 1
+            (the message names the limit and its V1*).
+
+        {warns}
+        """,
+)
 
 
 @jit
@@ -85,63 +159,33 @@ def _solve(v1_star, eps_y, nu, unloading, extrapolate, et_ratio, loading):
     return out, shape
 
 
+@doc(_DOC)
 def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
                   extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
                   loading: str | None = None) -> float | NDArray[np.float64]:
     """Normalised maximum interference w_m* = omega_m/omega_c of an impact at V1* (-).
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
-    eps_y : float or array_like
-        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
-    extrapolate : bool, optional
-        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1. Default False.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
-        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
+    w_m* does not depend on the unloading model: there is no ``unloading`` parameter.
+
+    {params_no_unloading}
 
     Returns
     -------
     float or ndarray
         w_m* (-), JGM eq (31), broadcast over the inputs (a float if all are scalars).
 
-    Raises
-    ------
-    TypeError
-        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
-        True or False.
-    ValueError
-        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
-        that do not broadcast; a speed past w_m* = 425 (without ``extrapolate``) or past a/R = 1
-        (the message names the limit and its V1*).
-
-    Warns
-    -----
-    ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
-    ExtrapolationWarning
-        With ``extrapolate=True``, when a result lies past w_m* = 425.
+    {raises_no_unloading}
 
     Notes
     -----
     Solves the energy balance JGM eq (29), V1*^2 = F(w_m*) with F the loading energy of eqs (19),
     (25) (:func:`fastrest.loading_energy`): w_m* = V1*^0.8 in closed form up to V1* = 1.9^1.25,
-    Newton's method in ln w above (docs/model.md section 7). Relative error ~1e-15. Does not
-    depend on the unloading model.
+    Newton's method in ln w above (docs/model.md section 7). Relative error ~1e-15.
 
     Examples
     --------
-    JGM check value (docs/model.md section 3):
-
     >>> from fastrest import direct
-    >>> round(direct.omega_m_exact(10.0, 0.005, 0.33), 9)
+    >>> round(direct.omega_m_exact(10.0, 0.005, 0.33), 9)  # JGM check value (docs/model.md section 3)
     6.549856323
     >>> direct.omega_m_exact(2000.0, 0.005, 0.33)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
@@ -153,32 +197,13 @@ def omega_m_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *,
     return shaped(out[0], shape)
 
 
+@doc(_DOC)
 def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
             extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
             loading: str | None = None) -> float | NDArray[np.float64]:
     """Coefficient of restitution e = V2/V1 (-) of an impact at V1*, by the exact solver.
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
-    eps_y : float or array_like
-        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
-    unloading : {"jcg", "etsion", "brake"}, optional
-        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
-        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
-        (:mod:`fastrest.unloading`).
-    extrapolate : bool, optional
-        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
-        of eq 35 at w_m* = 10017.5). Default False.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
-        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
+    {params}
 
     Returns
     -------
@@ -187,23 +212,7 @@ def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str 
         The model can give e slightly above 1 just above V1* = 1.9^1.25 for small nu
         (docs/model.md section 5); it is not clipped.
 
-    Raises
-    ------
-    TypeError
-        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
-        True or False.
-    ValueError
-        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
-        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
-        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
-        limit and its V1*).
-
-    Warns
-    -----
-    ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
-    ExtrapolationWarning
-        With ``extrapolate=True``, when a result lies past w_m* = 425.
+    {raises}
 
     Notes
     -----
@@ -227,6 +236,7 @@ def e_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str 
     return shaped(out[1], shape)
 
 
+@doc(_DOC)
 def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
                extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
                loading: str | None = None) -> float | NDArray[np.float64]:
@@ -235,50 +245,14 @@ def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: s
     Keeps full relative accuracy as V1* -> 1 (e.g. V1* = 1 + 1e-9), where 1 - e_exact(...)**2
     would lose most digits (multi-asperity codes sum many barely plastic contacts).
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
-    eps_y : float or array_like
-        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
-    unloading : {"jcg", "etsion", "brake"}, optional
-        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
-        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
-        (:mod:`fastrest.unloading`).
-    extrapolate : bool, optional
-        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
-        of eq 35 at w_m* = 10017.5). Default False.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
-        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
+    {params}
 
     Returns
     -------
     float or ndarray
         1 - e^2 (-), broadcast over the inputs (a float if all are scalars); 0 for V1* <= 1.
 
-    Raises
-    ------
-    TypeError
-        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
-        True or False.
-    ValueError
-        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
-        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
-        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
-        limit and its V1*).
-
-    Warns
-    -----
-    ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
-    ExtrapolationWarning
-        With ``extrapolate=True``, when a result lies past w_m* = 425.
+    {raises}
 
     Notes
     -----
@@ -297,32 +271,13 @@ def loss_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: s
     return shaped(out[2], shape)
 
 
+@doc(_DOC)
 def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
                    extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
                    loading: str | None = None) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
     """Residual state after the impact: residual interference and radius of curvature (-).
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
-    eps_y : float or array_like
-        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
-    unloading : {"jcg", "etsion", "brake"}, optional
-        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
-        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
-        (:mod:`fastrest.unloading`).
-    extrapolate : bool, optional
-        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
-        of eq 35 at w_m* = 10017.5). Default False.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
-        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
+    {params}
 
     Returns
     -------
@@ -332,23 +287,7 @@ def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloadin
         Radius of curvature of the residual shape over the sphere's, R_res/R (-); 1 for V1* <= 1.
         Both broadcast over the inputs.
 
-    Raises
-    ------
-    TypeError
-        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
-        True or False.
-    ValueError
-        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
-        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
-        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
-        limit and its V1*).
-
-    Warns
-    -----
-    ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
-    ExtrapolationWarning
-        With ``extrapolate=True``, when a result lies past w_m* = 425.
+    {raises}
 
     Notes
     -----
@@ -366,32 +305,13 @@ def residual_exact(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloadin
     return shaped(out[3], shape), shaped(out[4], shape)
 
 
+@doc(_DOC)
 def solve(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = "jcg", *,
           extrapolate: bool = False, et_ratio: ArrayLike = 0.0,
           loading: str | None = None) -> dict[str, float | NDArray[np.float64]]:
     """Everything the direct solver computes for an impact, from one solve.
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        Normalised impact speed V1/V_c (-), JGM eq (30); >= 0 and finite, up to
-        ``fastrest.limit(eps_y, nu).v1_star`` (about 1022 for eps_y = 0.005, nu = 0.33).
-    eps_y : float or array_like
-        Sy/E' (-), eq (11); > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material (-), 0 <= nu < 0.5 (validated 0.2-0.45).
-    unloading : {"jcg", "etsion", "brake"}, optional
-        Unloading model (residual interference): ``"jcg"`` JGM eq (35) (default), ``"etsion"``
-        eqs (33)-(34), ``"brake"`` Brake (2015) as tmdsimpy implements it
-        (:mod:`fastrest.unloading`).
-    extrapolate : bool, optional
-        Allow w_m* > 425 (JGM's range), with the same formulas up to a/R = 1 (and, for JCG, the end
-        of eq 35 at w_m* = 10017.5). Default False.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1 (default 0: elastic-perfectly
-        plastic). Above 0 the loading law is Ghaednia et al. (2019), docs/model.md section 12.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:mod:`fastrest.loading`); None picks it from ``et_ratio``.
+    {params}
 
     Returns
     -------
@@ -400,23 +320,7 @@ def solve(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, unloading: str = 
         ``"R_res_ratio"`` (R_res/R), all dimensionless, each as :func:`omega_m_exact`,
         :func:`e_exact`, :func:`loss_exact` and :func:`residual_exact` return them.
 
-    Raises
-    ------
-    TypeError
-        A speed or material parameter is not a real number or array of them; ``extrapolate`` is not
-        True or False.
-    ValueError
-        v1_star negative, NaN or infinite; eps_y not finite and > 0; nu outside [0, 0.5); shapes
-        that do not broadcast; an unknown ``unloading``; a speed past w_m* = 425 (without
-        ``extrapolate``), past a/R = 1, or past the unloading model's end (the message names the
-        limit and its V1*).
-
-    Warns
-    -----
-    ValidityWarning
-        eps_y or nu outside the validated 0.0005 <= eps_y <= 0.01, 0.2 <= nu <= 0.45.
-    ExtrapolationWarning
-        With ``extrapolate=True``, when a result lies past w_m* = 425.
+    {raises}
 
     Notes
     -----

@@ -20,7 +20,8 @@ import math
 import numpy as np
 
 from ._jit import jit
-from .contact import evaluate_law
+from ._doc import doc
+from .contact import LAW_DOC, evaluate_law
 from .loading.jackson_green import W_SWITCH, area_exponent
 from .critical import c_of_nu
 from .loading import JACKSON_GREEN, p_star_above, valid as law_valid
@@ -164,39 +165,21 @@ def _f_star_array(w, eps_y, nu, et_ratio, law, out):
         out[i] = f_star_kernel(w[i], eps_y[i], nu[i], law, et_ratio[i])
 
 
+@doc(LAW_DOC)
 def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
                    loading: str | None = None) -> float | NDArray[np.float64]:
     """Loading energy F(w) = 1 - (W_ep)*(w) to maximum interference w, over U_c (-).
 
     Equal to V1*^2 of the impact whose maximum interference is w (the energy balance, JGM eq 29).
 
-    Parameters
-    ----------
-    w : float or array_like
-        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
-        (:func:`omega_star_limit`; not limited to w* = 425).
-    eps_y : float or array_like
-        Sy/E' (-), > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``.
+    {law_params}
 
     Returns
     -------
     float or ndarray
         F (-), broadcast over the inputs (a float if all are scalars); w^2.5 for w <= 1.9.
 
-    Raises
-    ------
-    TypeError
-        An input is not a real number or array of them (strings, booleans, None, complex).
-    ValueError
-        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1) or a
-        law that does not take it; shapes that do not broadcast.
+    {law_raises}
 
     Notes
     -----
@@ -217,6 +200,7 @@ def loading_energy(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: A
     return evaluate_law(_f_star_array, w, eps_y, nu, et_ratio, loading)
 
 
+@doc(LAW_DOC)
 def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike = 0.0,
            loading: str | None = None) -> float | NDArray[np.float64]:
     """Normalised elasto-plastic energy (W_ep)* of JGM eq (25): -(5/2) int_1^w P* dz (-).
@@ -224,33 +208,14 @@ def W_star(w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, et_ratio: ArrayLike
     Zero at w = 1, negative above; for 0 <= w < 1 the same integral over the Hertz law, 1 - w^2.5.
     Equal to 1 - F(w) (see :func:`loading_energy`).
 
-    Parameters
-    ----------
-    w : float or array_like
-        Normalised interference omega/omega_c (-), >= 0 and below the point where a/R = 1
-        (:func:`omega_star_limit`; not limited to w* = 425).
-    eps_y : float or array_like
-        Sy/E' (-), > 0 (validated range 0.0005-0.01).
-    nu : float or array_like
-        Poisson's ratio of the yielding material, 0 <= nu < 0.5.
-    et_ratio : float or array_like, optional
-        Tangent modulus over Young's modulus Et/E (-), 0 <= et_ratio < 1; default 0.
-    loading : {None, "jackson-green", "ghaednia"}, optional
-        The loading law (:func:`fastrest.P_star`); None picks it from ``et_ratio``.
+    {law_params}
 
     Returns
     -------
     float or ndarray
         (W_ep)* (-), broadcast over the inputs (a float if all are scalars).
 
-    Raises
-    ------
-    TypeError
-        An input is not a real number or array of them (strings, booleans, None, complex).
-    ValueError
-        w negative, NaN or infinite, or at or past the point where a/R = 1 (the message gives that
-        w*); eps_y not finite and > 0; nu outside [0, 0.5) or NaN; et_ratio outside [0, 1) or a
-        law that does not take it; shapes that do not broadcast.
+    {law_raises}
 
     Notes
     -----

@@ -64,8 +64,8 @@ __all__ = ["STATE_SIZE", "MAX_CONTACTS", "check_state_count", "contact_force", "
            "stack_laws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked"]
 
 #: Values of history per contact: w_max (largest interference so far), P*(w_max), w_res* and
-#: delta = w_max - w_res* of the unloading model at w_max (set with w_max at every loading step;
-#: rows of fastrest <= 0.2 left 0 there until the contact unloaded: such rows are refused).
+#: delta = w_max - w_res* of the unloading model at w_max (set with w_max at every loading step, so
+#: a row with w_max > 0 and delta = 0 is no history of a law and is refused).
 STATE_SIZE = 4
 #: Most contacts :meth:`ContactLaw.new_state` allocates at once (32 GB of history rows).
 MAX_CONTACTS = 10**9
@@ -122,12 +122,12 @@ def check_state_count(n: object, free_bytes: int | None = None, where: str = "in
 
 
 @jit(inline=True)
-def contact_force(law, state, w):
+def contact_force(data, state, w):
     """Normal force P* = P/P_c at interference w = omega/omega_c, updating the contact's history.
 
     Parameters
     ----------
-    law : ForwardData
+    data : ForwardData
         ``ContactLaw.data`` of the material (:func:`contact_law`).
     state : float64 array of :data:`STATE_SIZE`
         This contact's history; zeros for a virgin contact. Updated in place.
@@ -138,7 +138,7 @@ def contact_force(law, state, w):
     Returns
     -------
     float
-        P* (-). NaN for NaN or infinite w, past the law's end (``law.w_max``: w* = 425, a/R = 1 or the end of
+        P* (-). NaN for NaN or infinite w, past the law's end (``data.w_max``: w* = 425, a/R = 1 or the end of
         the unloading model), a state whose w_max = state[0] is negative, NaN or past the law's
         end, or positive with delta = state[3] <= 0 (no history of this law); the state is then set to NaN (the contact's history is lost: every
         later call gives NaN until the row is zeroed). A jit kernel: it never raises.
@@ -147,7 +147,7 @@ def contact_force(law, state, w):
     -----
     Virgin loading (w above the largest interference so far): the Jackson-Green law, Hertz w^1.5
     up to w = 1.9 (JGM eq 14) and eq (9) above (Ghaednia et al.'s with hardening,
-    ``law.et_ratio`` > 0), from the cells of ``law.p_rows`` (~1e-14 relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
+    ``data.et_ratio`` > 0), from the cells of ``data.p_rows`` (~1e-14 relative). Below the maximum: elastic unloading and reloading, JGM eq (32), through the
     maximum point and the unloading model's residual interference (eq 35, eqs 33-34 or Brake's,
     read from cells beside P*'s to 3.3e-14 and stored with w_max at every loading step);
     0 at or below w_res*. No branch: every case is computed and one chosen by selects
@@ -168,16 +168,16 @@ def contact_force(law, state, w):
     >>> state.round(6)  # w_max, P*(w_max), w_res*, w_max - w_res*
     array([10.      , 25.647583,  3.701334,  6.298666])
     """
-    rows = law.law_rows
-    return law_step(rows, 0, rows.shape[0] - 1, law.w_max, state, np.float64(w))
+    rows = data.law_rows
+    return law_step(rows, 0, rows.shape[0] - 1, data.w_max, state, np.float64(w))
 
 
 @jit(inline=True)
-def _contact_force_sequential(law, state, w):
+def _contact_force_sequential(data, state, w):
     """:func:`contact_force` with branches (bit for bit the same): for one contact stepped through
     time (:meth:`ContactLaw.force`, :func:`impact_in_time`), where it is the faster one."""
-    rows = law.law_rows
-    return law_step_branching(rows, 0, rows.shape[0] - 1, law.w_max, state, np.float64(w))
+    rows = data.law_rows
+    return law_step_branching(rows, 0, rows.shape[0] - 1, data.w_max, state, np.float64(w))
 
 
 StackedLaws = namedtuple("StackedLaws", ["model", "eps_y", "nu", "w_max", "shift", "base", "p_rows",
@@ -282,12 +282,12 @@ def contact_force_stacked(laws, material, state, w):
 
 
 @jit(inline=True)
-def dissipated_energy(law, state):
+def dissipated_energy(data, state):
     """Energy the contact has dissipated so far, over U_c, from its history row (-).
 
     Parameters
     ----------
-    law : ForwardData
+    data : ForwardData
         ``ContactLaw.data`` of the material (:func:`contact_law`), the law that built ``state``.
     state : float64 array of :data:`STATE_SIZE`
         The contact's history, as :func:`contact_force` leaves it (not changed).
@@ -328,7 +328,7 @@ def dissipated_energy(law, state):
     """
     if not state[1] == state[1]:  # a row whose P*(w_max) is NaN lost its history
         return np.nan
-    return loss_forward(law, state[0])
+    return loss_forward(data, state[0])
 
 
 @jit(inline=True)
@@ -452,15 +452,15 @@ def stack_laws(laws: Sequence[ContactLaw]) -> StackedLaws:
 
 
 @jit
-def _force_path(law, state, w, out):
+def _force_path(data, state, w, out):
     for i in range(w.size):
-        out[i] = _contact_force_sequential(law, state, w[i])
+        out[i] = _contact_force_sequential(data, state, w[i])
 
 
 @jit
-def _dissipated_rows(law, rows, out):
+def _dissipated_rows(data, rows, out):
     for i in range(out.size):
-        out[i] = dissipated_energy(law, rows[i])
+        out[i] = dissipated_energy(data, rows[i])
 
 
 @jit
@@ -508,22 +508,22 @@ SCALE_BELOW = 2.0**-5
 
 
 @jit
-def _law_formula(law, w):
+def _law_formula(data, w):
     """P*(w) of the loading law by its formulas: Hertz up to 1.9 (eq 14), eq (9) above (the
-    hardening law of ``law.law``/``law.et_ratio``, :func:`fastrest.loading.p_star_above`)."""
+    hardening law of ``data.law``/``data.et_ratio``, :func:`fastrest.loading.p_star_above`)."""
     if w <= W_SWITCH:
         return w * math.sqrt(w)
-    return p_star_above(law.law, w, law.eps_y, law.nu, c_of_nu(law.nu), area_exponent(law.eps_y), law.et_ratio)
+    return p_star_above(data.law, w, data.eps_y, data.nu, c_of_nu(data.nu), area_exponent(data.eps_y), data.et_ratio)
 
 
 @jit
-def _overshoot_force(law, state, w):
-    """Virgin loading past the law's end ``law.w_max`` during :func:`impact_in_time`: eq (9)
+def _overshoot_force(data, state, w):
+    """Virgin loading past the law's end ``data.w_max`` during :func:`impact_in_time`: eq (9)
     itself (Hertz up to 1.9), the law's analytic continuation. A step near the maximum
     interference of an impact at a speed the model accepts overshoots it by O(dt^2); the force
     there is the formula's, as for every other speed, instead of NaN."""
-    p = _law_formula(law, w)
-    _, delta = _unloading.residual(law.model, w, w - 1.0, p, law.eps_y, law.nu, law.law, law.et_ratio)
+    p = _law_formula(data, w)
+    _, delta = _unloading.residual(data.model, w, w - 1.0, p, data.eps_y, data.nu, data.law, data.et_ratio)
     state[0] = w
     state[1] = p
     state[2] = w - delta  # as the law writes it (w_res* to rounding)
@@ -532,7 +532,7 @@ def _overshoot_force(law, state, w):
 
 
 @jit
-def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
+def impact_in_time(data, v1_star, steps_per_contact, locate_switch, state):
     """One impact integrated in time with velocity Verlet and :func:`contact_force`.
 
     Normalised equation of motion: d^2w/dtau^2 = -(5/4) P*(w), tau = t V_c/omega_c, from w = 0 at
@@ -540,8 +540,8 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
     ``locate_switch`` the step that crosses w = 1.9 on virgin loading (where the JG law jumps by
     ~0.16 %) is split there, which keeps the scheme second order; without, it is first order.
 
-    The caller checks that V1* reaches w_m* <= ``law.w_max`` (:meth:`ContactLaw.impact`); a step
-    that still passes ``law.w_max`` on virgin loading (the scheme overshoots the maximum
+    The caller checks that V1* reaches w_m* <= ``data.w_max`` (:meth:`ContactLaw.impact`); a step
+    that still passes ``data.w_max`` on virgin loading (the scheme overshoots the maximum
     interference by O(dt^2)) takes the law's formula there (:func:`_overshoot_force`). Below
     :data:`SCALE_BELOW` (Hertz contact only, w_m* < 1/16) the impact is integrated in units scaled
     by powers of two, w = 2^(4k) x, tau = 2^(-k) s, V1* = 2^(5k) V' with V' in (2^-10, 2^-5]: the
@@ -561,7 +561,7 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
             scale += 1
     v0 = math.ldexp(v1_star, -5 * scale)
     dt = hertz_contact_time(v0) / steps_per_contact
-    w_end = law.w_max
+    w_end = data.w_max
     w = 0.0
     v = v0
     a = 0.0
@@ -577,19 +577,19 @@ def impact_in_time(law, v1_star, steps_per_contact, locate_switch, state):
             c = w - W_SWITCH
             disc = v * v - 2.0 * a * c
             t1 = -2.0 * c / (v + math.sqrt(disc))
-            a1 = -1.25 * _contact_force_sequential(law, state, W_SWITCH)
+            a1 = -1.25 * _contact_force_sequential(data, state, W_SWITCH)
             v += 0.5 * (a + a1) * t1
             w = W_SWITCH
-            a = -1.25 * (P_table_forward(law, np.nextafter(W_SWITCH, math.inf)) if w_end > W_SWITCH
-                         else _law_formula(law, np.nextafter(W_SWITCH, math.inf)))
+            a = -1.25 * (P_table_forward(data, np.nextafter(W_SWITCH, math.inf)) if w_end > W_SWITCH
+                         else _law_formula(data, np.nextafter(W_SWITCH, math.inf)))
             h = dt - t1
             w_new = w + v * h + 0.5 * a * h * h
         if w_new > w_end and w_new > state[0] and w_new > W_SWITCH:
-            p = _overshoot_force(law, state, w_new)
+            p = _overshoot_force(data, state, w_new)
         elif state[0] > w_end:  # unloading from an overshoot: the law refuses such a row; its branch
             p = elastic_back(state[0], state[1], state[3], w_new)
         else:
-            p = _contact_force_sequential(law, state, w_new)
+            p = _contact_force_sequential(data, state, w_new)
         a_new = -1.25 * p
         v += 0.5 * (a + a_new) * h
         w = w_new
@@ -839,7 +839,7 @@ class ContactLaw:
         """Refuse a state row that is no history of this law (:meth:`force` and
         :meth:`dissipated_energy`, one rule): w_max = state[0] NaN, < 0 or past the law's w_max,
         or P*(w_max) = state[1] NaN (the history was lost), or w_max > 0 with delta = state[3] <= 0
-        (delta is set with w_max: a row of fastrest <= 0.2 written while its contact loaded)."""
+        (delta is set with w_max at every loading step)."""
         w_top, p_top, delta = rows[:, 0], rows[:, 1], rows[:, 3]
         bad = ~((w_top >= 0.0) & (w_top <= self.w_max) & (p_top == p_top) & ((delta > 0.0) | (w_top == 0.0)))
         if bad.any():

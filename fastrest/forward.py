@@ -54,6 +54,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._deprecation import alias, keyword_only, module_getattr
+from ._doc import doc, paragraphs
 from ._jit import jit
 from ._validation import (check_bool, check_count, check_eps_y, check_nu, real_scalar,
                           warn_if_outside_validated)
@@ -70,6 +71,25 @@ from .unloading import BRAKE, ETSION, JCG, N_MODELS, restitution, unloading_code
 __all__ = ["ForwardData", "forward_data", "F_forward", "P_forward",
            "P_table_forward", "FP_table_forward", "returned_forward", "loss_forward",
            "forward_values", "forward_values_excess", "JCG", "ETSION", "BRAKE"]
+
+# The parameters of the ``*_forward`` kernels and their examples' first lines, written once
+# (fastrest._doc).
+_DOC = paragraphs(
+    params="""
+        Parameters
+        ----------
+        data : ForwardData
+            The material's forward map, :func:`forward_data`.
+        w : float
+            Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+        """,
+    examples="""
+        Examples
+        --------
+        >>> from fastrest import forward
+        >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+        """,
+)
 
 #: Cells per octave of w (2^K). K = 5: max relative error ~5e-15 on F (K = 4: ~5e-13), measured
 #: against energy.f_star_kernel over 0.0005 <= eps_y <= 0.01 (tests/test_rough.py asserts <= 1e-12).
@@ -132,15 +152,13 @@ def _p_jg(data, w):
 # --- scalar kernels (call these from @njit code) -----------------------------------------------
 
 @jit(inline=True)
+@doc(_DOC)
 def F_forward(data, w):
     """Loading energy to interference w over U_c, F(w) = 1 - (W_ep)*(w) (-).
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    The V1*^2 of a single sphere whose maximum interference is w (JGM eq 29).
+
+    {params}
 
     Returns
     -------
@@ -150,14 +168,11 @@ def F_forward(data, w):
 
     Notes
     -----
-    JGM eqs (19), (25) normalised by U_c: the V1*^2 of a single sphere whose maximum interference is
-    w (eq 29). Above w = 1.9 read from the degree-5 cells of ``data.f_rows`` (~1e-15 relative to
-    :func:`fastrest.loading_energy`). Inlined into the calling jitted loop.
+    JGM eqs (19), (25) normalised by U_c. Above w = 1.9 read from the degree-5 cells of
+    ``data.f_rows`` (~1e-15 relative to :func:`fastrest.loading_energy`). Inlined into the calling
+    jitted loop.
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> round(forward.F_forward(d, 6.549856322605), 9)  # the V1* = 10 check value, squared
     100.0
     >>> forward.F_forward(d, 60.0)  # past w_max
@@ -173,15 +188,11 @@ def F_forward(data, w):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def P_forward(data, w):
     """Contact force at interference w over P_c, P*(w) (-), by the exact formula (no table).
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    {params}
 
     Returns
     -------
@@ -194,10 +205,7 @@ def P_forward(data, w):
     :func:`fastrest.P_star`); Ghaednia et al.'s (2019) above for a hardening ``data``
     (``data.law``, ``data.et_ratio``).
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> round(forward.P_forward(d, 10.0), 6)
     25.647583
     """
@@ -211,32 +219,25 @@ def P_forward(data, w):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def P_table_forward(data, w):
     """P*(w) from the table (within ~1e-14 of :func:`P_forward`, ~7x cheaper above w = 1.9) (-).
 
     For Newton slopes and other places where the last digits do not matter; reported forces use
     the exact :func:`P_forward`.
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    {params}
 
     Returns
     -------
     float
-        P* (-); NaN for w < 0, NaN or w > ``data.w_max`` (a jit kernel: it never raises).
+        P* (-), NaN where :func:`P_forward` gives NaN (a jit kernel: it never raises).
 
     Notes
     -----
     JGM eqs (9), (14), above w = 1.9 from the degree-5 cells of ``data.p_rows`` fitted to eq (9).
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> abs(forward.P_table_forward(d, 10.0) / forward.P_forward(d, 10.0) - 1) < 1e-13
     True
     """
@@ -244,24 +245,18 @@ def P_table_forward(data, w):
         if w <= data.w_max:
             return cell_polynomial(data.p_rows, cell_index(w, data.shift, data.base), w)
         return np.nan
-    if w >= 0.0 and w <= data.w_max:
-        return w * math.sqrt(w)
-    return np.nan
+    return P_forward(data, w)  # Hertz (NaN below 0 or past w_max)
 
 
 @jit(inline=True)
+@doc(_DOC)
 def FP_table_forward(data, w):
     """(F(w), P*(w)) with P* from its table: one cell lookup for both.
 
     The pair a Newton iteration on the energy balance needs (energy and its slope, the force);
     about 3x cheaper than :func:`F_forward` plus :func:`P_forward` above w = 1.9.
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    {params}
 
     Returns
     -------
@@ -275,10 +270,7 @@ def FP_table_forward(data, w):
     -----
     JGM eqs (19), (25) and (9), (14); dF/dw = (5/2) P* (eq 25).
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> f, p = forward.FP_table_forward(d, 10.0)
     >>> round(f, 6), round(p, 6)
     (272.276805, 25.647583)
@@ -298,15 +290,13 @@ def FP_table_forward(data, w):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def forward_values(data, w):
     """(F, P*, R, L) at interference w: loading energy, force, returned and dissipated energy.
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    For the impact whose maximum interference is w, e^2 = R/F and 1 - e^2 = L/F.
+
+    {params}
 
     Returns
     -------
@@ -324,13 +314,9 @@ def forward_values(data, w):
     Notes
     -----
     R = P*(w) (w - w_res*(w)): JGM eq (38) with the elastic unloading of eq (32) and the unloading
-    model's w_res* (eq 35, eqs 33-34 or Brake's). For an impact whose maximum interference is w,
-    e^2 = R/F and 1 - e^2 = L/F.
+    model's w_res* (eq 35, eqs 33-34 or Brake's).
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> F, P, R, L = forward.forward_values(d, 6.549856322605)  # w_m* of V1* = 10
     >>> round(F, 6), round(P, 6), round(R, 6), round(L, 6)
     (100.0, 14.530473, 68.679768, 31.320232)
@@ -341,15 +327,11 @@ def forward_values(data, w):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def forward_values_excess(data, w, w1):
     """:func:`forward_values` with w1 = w - 1 given (documented internal).
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    {params}
     w1 : float
         w - 1 (-), computed by the caller without cancellation (near the onset of yield L is
         proportional to it: the rough-surface solvers carry it beside w).
@@ -390,15 +372,13 @@ def forward_values_excess(data, w, w1):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def returned_forward(data, w):
     """Energy returned by elastic unloading from w, over U_c: R(w) = P*(w) (w - w_res*(w)) (-).
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    For the impact whose maximum interference is w, e^2 = R(w)/F(w) (JGM eq 16).
+
+    {params}
 
     Returns
     -------
@@ -411,10 +391,7 @@ def returned_forward(data, w):
     JGM eq (38) normalised, with eq (32) and the unloading model's w_res* (eq 35, eqs 33-34 or
     Brake's): see :func:`forward_values`.
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> round(forward.returned_forward(d, 6.549856322605), 6)
     68.679768
     """
@@ -422,15 +399,13 @@ def returned_forward(data, w):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def loss_forward(data, w):
     """Energy dissipated by loading to w and unloading, over U_c: L(w) = F(w) - R(w) (-).
 
-    Parameters
-    ----------
-    data : ForwardData
-        The material's forward map, :func:`forward_data`.
-    w : float
-        Normalised interference omega/omega_c (-), 0 <= w <= ``data.w_max``.
+    (1 - e^2) V1*^2 of the impact whose maximum interference is w.
+
+    {params}
 
     Returns
     -------
@@ -442,12 +417,9 @@ def loss_forward(data, w):
     Notes
     -----
     JGM eqs (25), (38): the loading energy minus the energy eq (32) returns (see
-    :func:`forward_values`); (1 - e^2) V1*^2 of the impact whose maximum interference is w.
+    :func:`forward_values`).
 
-    Examples
-    --------
-    >>> from fastrest import forward
-    >>> d = forward.forward_data(0.005, 0.33, w_max=50.0)
+    {examples}
     >>> round(forward.loss_forward(d, 6.549856322605), 6)
     31.320232
     >>> forward.loss_forward(d, 0.5)

@@ -13,6 +13,7 @@ implements the equations as printed, not the table values (see docs/model.md).
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, overload
 from numpy.typing import ArrayLike, NDArray
 if TYPE_CHECKING:
@@ -25,6 +26,7 @@ import numpy as np
 
 from . import direct
 from ._deprecation import alias, warn_deprecated
+from ._doc import doc, paragraphs
 from ._validation import (EDGE_TOL, EPS_Y_VALIDATED, NU_VALIDATED, ValidityWarning, as_float_array,
                           check_finite_positive, check_velocity, real_scalar, warn)
 from .critical import (critical_area, critical_energy, critical_force, critical_interference,
@@ -34,6 +36,77 @@ from .loading import LAWS, LoadingLaw, resolve as resolve_loading
 from .materials import UNITS_HINT, Material, implausible, poisson_factor
 
 __all__ = ["Impact"]
+
+# The parameters, Warns and examples' first lines shared by the methods of Impact, written once
+# (fastrest._doc).
+_DOC = paragraphs(
+    params_V1="""
+        Parameters
+        ----------
+        V1 : float or array_like
+            Impact speed (m/s), see :meth:`v1_star`.
+        extrapolate : bool, optional
+            Accept speeds past w_m* = 425.
+        """,
+    params_V1_unloading="""
+        Parameters
+        ----------
+        V1 : float or array_like
+            Impact speed (m/s), see :meth:`v1_star`.
+        unloading : {"jcg", "etsion", "brake"}, optional
+            Unloading model (see :mod:`fastrest.unloading`).
+        extrapolate : bool, optional
+            Accept speeds past w_m* = 425.
+        """,
+    warns_validity="""
+        Warns
+        -----
+        ValidityWarning
+            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
+            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
+        """,
+    warns="""
+        {warns_validity}
+        ExtrapolationWarning
+            With ``extrapolate=True``, past w_m* = 425.
+        """,
+    raises_options="""
+        Raises
+        ------
+        TypeError
+            ``extrapolate`` is not True or False.
+        ValueError
+            An unknown ``unloading``.
+        """,
+    raises_as_e="""
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`e`.
+
+        Warns
+        -----
+        ValidityWarning, ExtrapolationWarning
+            As :meth:`e`.
+        """,
+    examples="""
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
+        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        """,
+)
+
+
+def _critical_value(scale: Callable[[float, float, float, float], float], text: str) -> Any:
+    """A read-only property of :class:`Impact`: the critical scale ``scale`` (a function of
+    :mod:`fastrest.critical`) of the contact's C, Sy, E' and R', documented by ``text``."""
+    def get(self: Impact) -> float:
+        return scale(self.C, self.Sy, self.E_eff, self.R_eff)
+
+    get.__doc__ = text
+    return property(get)
 
 
 class Impact:
@@ -306,32 +379,18 @@ class Impact:
         """The hardening keywords of the normalised API for this impact."""
         return dict(et_ratio=self.et_ratio, loading=self._law.name)
 
-    # --- critical values, eqs (4), (6), (7), (23), (28) ---
-    @property
-    def omega_c(self) -> float:
-        """Critical interference (m), eq (4)."""
-        return critical_interference(self.C, self.Sy, self.E_eff, self.R_eff)
-
-    @property
-    def P_c(self) -> float:
-        """Critical force (N), eq (6)."""
-        return critical_force(self.C, self.Sy, self.E_eff, self.R_eff)
-
-    @property
-    def A_c(self) -> float:
-        """Critical contact area (m^2), eq (7)."""
-        return critical_area(self.C, self.Sy, self.E_eff, self.R_eff)
-
-    @property
-    def U_c(self) -> float:
-        """Critical strain energy (J), eq (23)."""
-        return critical_energy(self.C, self.Sy, self.E_eff, self.R_eff)
+    # --- critical values, eqs (4), (6), (7), (23), (28): properties of (C, Sy, E', R') ---
+    omega_c: float = _critical_value(critical_interference, "Critical interference (m), eq (4).")
+    P_c: float = _critical_value(critical_force, "Critical force (N), eq (6).")
+    A_c: float = _critical_value(critical_area, "Critical contact area (m^2), eq (7).")
+    U_c: float = _critical_value(critical_energy, "Critical strain energy (J), eq (23).")
 
     @property
     def V_c(self) -> float:
         """Critical initial velocity (m/s), eq (28)."""
         return critical_velocity(self.U_c, self.mass)
 
+    @doc(_DOC)
     def critical_values(self) -> dict[str, float]:
         """All critical and effective values as a dict (SI units).
 
@@ -347,11 +406,7 @@ class Impact:
         JGM eqs (4)-(7), (11), (23), (28). The omega_c and P_c of JGM Tables 1, 3, 4 are smaller by
         (1 - nu^2)^2; fastrest implements the equations (docs/model.md section 6).
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> cv = imp.critical_values()
         >>> round(cv["omega_c"] * 1e6, 4), round(cv["P_c"], 3)  # um, N
         (1.6748, 64.863)
@@ -368,6 +423,7 @@ class Impact:
         return f"Impact(sphere={self.sphere!r}, R_eff={self.R_eff!r}, flat={flat}, mass={self.mass!r}{law})"
 
     # --- dimensional restitution API (eqs 16, 29-38) ---
+    @doc(_DOC)
     def V_max(self, unloading: str = "jcg", *, extrapolate: bool = False) -> float:
         """Largest impact speed the model accepts (m/s).
 
@@ -386,12 +442,7 @@ class Impact:
         float
             V1 (m/s) = V1*_max V_c, eq (28).
 
-        Raises
-        ------
-        TypeError
-            ``extrapolate`` is not True or False.
-        ValueError
-            An unknown ``unloading``.
+        {raises_options}
 
         Notes
         -----
@@ -399,16 +450,13 @@ class Impact:
         eq 29, at the interference limit) times V_c (docs/model.md section 4): the model's one limit
         (:func:`fastrest.limit`) in m/s for this impact.
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> round(imp.V_max(), 4), round(imp.V_max(extrapolate=True), 4)  # m/s
         (52.7211, 199.2743)
         """
         return speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading, **self._law_kw()) * self.V_c
 
+    @doc(_DOC)
     def v1_star(self, V1: ArrayLike, unloading: str | None = None, *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Normalised impact speed V1* = V1 / V_c (-), JGM eq (28).
 
@@ -438,11 +486,7 @@ class Impact:
         -----
         JGM eq (30) with V_c of eq (28). Every normalised API of fastrest takes V1*.
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> print(round(imp.v1_star(1.0), 6))
         19.397414
         """
@@ -462,15 +506,11 @@ class Impact:
                 raise ValueError(f"{exc}{more}") from None
         return float(v) if v.ndim == 0 else v
 
+    @doc(_DOC)
     def max_interference(self, V1: ArrayLike, *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Maximum interference omega_m (m) for impact speed V1 (m/s): w_m* omega_c, JGM eq (29).
 
-        Parameters
-        ----------
-        V1 : float or array_like
-            Impact speed (m/s), see :meth:`v1_star`.
-        extrapolate : bool, optional
-            Accept speeds past w_m* = 425.
+        {params_V1}
 
         Returns
         -------
@@ -482,39 +522,25 @@ class Impact:
         TypeError, ValueError
             As :meth:`v1_star`.
 
-        Warns
-        -----
-        ValidityWarning
-            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
-            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
-        ExtrapolationWarning
-            With ``extrapolate=True``, past w_m* = 425.
+        {warns}
 
         Notes
         -----
         :func:`fastrest.direct.omega_m_exact` (eq 29) times omega_c (eq 4), at V1* of eq (30).
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> round(imp.max_interference(1.0) * 1e6, 4)  # um
         19.2188
         """
         return direct.omega_m_exact(self.v1_star(V1, extrapolate=extrapolate), self.eps_y, self.nu,
                                    extrapolate=extrapolate, **self._law_kw()) * self.omega_c
 
+    @doc(_DOC)
     def omega_m(self, V1: ArrayLike, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Deprecated name of :meth:`max_interference` (metres, unlike the dimensionless
         ``Curve.omega_m``).
 
-        Parameters
-        ----------
-        V1 : float or array_like
-            Impact speed (m/s), see :meth:`v1_star`.
-        extrapolate : bool, optional
-            Accept speeds past w_m* = 425.
+        {params_V1}
 
         Returns
         -------
@@ -550,17 +576,11 @@ class Impact:
     @overload
     def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]: ...
 
+    @doc(_DOC)
     def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Coefficient of restitution e = V2 / V1 (-), JGM eqs (16), (38).
 
-        Parameters
-        ----------
-        V1 : float or array_like
-            Impact speed (m/s), see :meth:`v1_star`.
-        unloading : {"jcg", "etsion", "brake"}, optional
-            Unloading model (see :mod:`fastrest.unloading`).
-        extrapolate : bool, optional
-            Accept speeds past w_m* = 425.
+        {params_V1_unloading}
 
         Returns
         -------
@@ -572,13 +592,7 @@ class Impact:
         TypeError, ValueError
             As :meth:`v1_star`; ValueError for an unknown ``unloading``.
 
-        Warns
-        -----
-        ValidityWarning
-            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
-            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
-        ExtrapolationWarning
-            With ``extrapolate=True``, past w_m* = 425.
+        {warns}
 
         Notes
         -----
@@ -596,42 +610,24 @@ class Impact:
         return direct.e_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
                              unloading=unloading, extrapolate=extrapolate, **self._law_kw())
 
+    @doc(_DOC)
     def rebound_velocity(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:
         """Rebound speed V2 = e V1 (m/s) for impact speed V1 (m/s).
 
-        Parameters
-        ----------
-        V1 : float or array_like
-            Impact speed (m/s), see :meth:`v1_star`.
-        unloading : {"jcg", "etsion", "brake"}, optional
-            Unloading model (see :mod:`fastrest.unloading`).
-        extrapolate : bool, optional
-            Accept speeds past w_m* = 425.
+        {params_V1_unloading}
 
         Returns
         -------
         float or ndarray
             V2 (m/s), of the shape of V1.
 
-        Raises
-        ------
-        TypeError, ValueError
-            As :meth:`e`.
-
-        Warns
-        -----
-        ValidityWarning, ExtrapolationWarning
-            As :meth:`e`.
+        {raises_as_e}
 
         Notes
         -----
         JGM eqs (37), (38) (via e, eq 16).
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> imp.rebound_velocity([0.5, 1.0]).round(6)  # m/s
         array([0.416044, 0.750144])
         """
@@ -639,6 +635,7 @@ class Impact:
         out = out * as_float_array(V1, "V1")
         return float(out) if np.ndim(out) == 0 else out
 
+    @doc(_DOC)
     def contact_law(self, unloading: str = "jcg", *, extrapolate: bool = False) -> ContactLaw:
         """The time-domain contact law of this contact in SI units (:func:`fastrest.contact_law`).
 
@@ -657,29 +654,16 @@ class Impact:
             With ``omega_c`` (m) and ``P_c`` (N) of this impact as units; ``law.data`` stays
             normalised, for :func:`fastrest.jit.contact_force`.
 
-        Raises
-        ------
-        TypeError
-            ``extrapolate`` is not True or False.
-        ValueError
-            An unknown ``unloading``.
+        {raises_options}
 
-        Warns
-        -----
-        ValidityWarning
-            eps_y or nu of this impact outside the validated 0.0005-0.01, 0.2-0.45; JCG or Etsion
-            unloading of a hardening body (``et_ratio > 0``: fitted without hardening), once per call.
+        {warns_validity}
 
         Notes
         -----
         JGM eqs (8)-(15) for loading and (32)-(35) for unloading, in time (docs/model.md
         section 10).
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> law = imp.contact_law()
         >>> law.force([0.0, 1e-6, 2e-6]).round(4)  # interference in m, force in N
         array([ 0.    , 29.9256, 84.6423])
@@ -689,38 +673,24 @@ class Impact:
         return contact_law(self.eps_y, self.nu, unloading, extrapolate=extrapolate, omega_c=self.omega_c,
                            P_c=self.P_c, **self._law_kw())
 
+    @doc(_DOC)
     def residual(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
         """Residual interference omega_res (m) and residual radius R_res (m), JGM eqs (33)-(36).
 
-        Parameters
-        ----------
-        V1, unloading, extrapolate
-            As :meth:`e`.
+        {params_V1_unloading}
 
         Returns
         -------
         (omega_res, R_res) : tuple of float or ndarray
             Metres.
 
-        Raises
-        ------
-        TypeError, ValueError
-            As :meth:`e`.
-
-        Warns
-        -----
-        ValidityWarning, ExtrapolationWarning
-            As :meth:`e`.
+        {raises_as_e}
 
         Notes
         -----
         :func:`fastrest.direct.residual_exact` times omega_c (eq 4) and R_eff.
 
-        Examples
-        --------
-        >>> import fastrest
-        >>> steel = fastrest.Material(200e9, 0.33, 1.12e9)  # JGM Table 1
-        >>> imp = fastrest.Impact(steel, 0.01, mass=0.0327)
+        {examples}
         >>> omega_res, R_res = imp.residual(1.0)
         >>> round(omega_res * 1e6, 4), round(R_res * 1e3, 4)  # um, mm
         (7.6978, 29.1037)

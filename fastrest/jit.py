@@ -48,6 +48,7 @@ import numpy as np
 from numba.extending import overload
 
 from ._deprecation import warn_deprecated
+from ._doc import doc, paragraphs
 from ._jit import jit
 from .critical import CriticalScales, critical_scales, yield_et_ratio
 from .curve_data import CurveData, e_curve, loss_curve, omega_m_curve
@@ -67,38 +68,92 @@ __all__ = ["CurveData", "SceneData", "TableData", "omega_m_material", "e_materia
            "StackedLaws", "stack_laws", "contact_force_stacked", "dissipated_energy", "dissipated_energy_stacked", "yield_et_ratio",
            "JACKSON_GREEN", "GHAEDNIA"]
 
+# The parameters and NaN rules of the table and scene kernels below, and their examples' first
+# lines, written once (fastrest._doc).
+_DOC = paragraphs(
+    table_params="""
+        Parameters
+        ----------
+        tab : TableData
+            A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
+        v1_star : float
+            Normalised impact speed V1/V_c (-), >= 0.
+        eps_y : float
+            Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
+        nu : float
+            Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
+        """,
+    table_params_unloading="""
+        {table_params}
+        unloading : int
+            Unloading model code: :data:`JCG` (eq 35), :data:`ETSION` (eqs 33-34) or :data:`BRAKE`.
+        """,
+    table_nan="""
+        NaN outside the table's domain (negative or NaN speed, material outside its grid, a point
+        past w_m* = 425 or a/R = 1): a jit kernel, it never raises.
+        """,
+    table_nan_unloading="""
+        NaN outside the table's domain (negative or NaN speed, material outside its grid, a point
+        past w_m* = 425 or a/R = 1), or for a model the table does not hold: a jit kernel, it never
+        raises.
+        """,
+    material_params="""
+        Parameters
+        ----------
+        scene : SceneData
+            A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
+        v1_star : float
+            Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
+        material : int
+            Material index into the scene, 0 <= material < number of materials.
+        """,
+    material_nan="""
+        NaN for a material index out of range, a negative or NaN speed, or one above the scene's
+        v_max (a jit kernel: it never raises).
+        """,
+    examples_table="""
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import jit as frj
+        >>> tab = fastrest.load_table().data
+        """,
+    examples_scene="""
+        Examples
+        --------
+        >>> import fastrest
+        >>> from fastrest import jit as frj
+        >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
+        """,
+)
+
 
 @jit(inline=True)
+def _model_value(tab, first, v1_star, eps_y, nu, unloading):
+    """Quantity ``first + 2 * code`` (e: 1, 1 - e^2: 2) of unloading model ``unloading`` from a table."""
+    code = material_index(unloading)  # int64; -1 for a fraction, a negative or non-finite code
+    if code < 0:
+        return np.nan
+    return table_value(tab, first + 2 * code, v1_star, eps_y, nu)
+
+
+@jit(inline=True)
+@doc(_DOC)
 def omega_m_table(tab, v1_star, eps_y, nu):
     """Normalised maximum interference w_m* at (V1*, eps_y, nu) from a table (-).
 
-    Parameters
-    ----------
-    tab : TableData
-        A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
-    v1_star : float
-        Normalised impact speed V1/V_c (-), >= 0.
-    eps_y : float
-        Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
-    nu : float
-        Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
+    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_exact`) stored
+    in the table (docs/model.md section 7).
+
+    {table_params}
 
     Returns
     -------
     float
-        w_m* (-); NaN outside the table's domain (negative or NaN speed, material outside its
-        grid, a point past w_m* = 425 or a/R = 1): a jit kernel, it never raises.
+        w_m* (-).
+        {table_nan}
 
-    Notes
-    -----
-    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_exact`) stored
-    in the table (docs/model.md section 7). Inlined into the calling jitted loop.
-
-    Examples
-    --------
-    >>> import fastrest
-    >>> from fastrest import jit as frj
-    >>> tab = fastrest.load_table().data
+    {examples_table}
     >>> round(frj.omega_m_table(tab, 10.0, 0.005, 0.33), 6)  # direct: 6.549856
     6.549856
     >>> frj.omega_m_table(tab, 10.0, 0.05, 0.33)  # outside the table
@@ -108,122 +163,70 @@ def omega_m_table(tab, v1_star, eps_y, nu):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def e_table(tab, v1_star, eps_y, nu, unloading):
     """Coefficient of restitution e at (V1*, eps_y, nu) from a table (-).
 
-    Parameters
-    ----------
-    tab : TableData
-        A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
-    v1_star : float
-        Normalised impact speed V1/V_c (-), >= 0.
-    eps_y : float
-        Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
-    nu : float
-        Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
-    unloading : int
-        Unloading model code: :data:`JCG` (eq 35), :data:`ETSION` (eqs 33-34) or :data:`BRAKE`.
+    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_exact`) stored in the
+    table.
+
+    {table_params_unloading}
 
     Returns
     -------
     float
-        e (-); NaN outside the table's domain (negative or NaN speed, material outside its
-        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit
-        kernel, it never raises.
+        e (-).
+        {table_nan_unloading}
 
-    Notes
-    -----
-    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_exact`) stored in the
-    table. Inlined into the calling jitted loop.
-
-    Examples
-    --------
-    >>> import fastrest
-    >>> from fastrest import jit as frj
-    >>> tab = fastrest.load_table().data
+    {examples_table}
     >>> round(frj.e_table(tab, 10.0, 0.005, 0.33, frj.JCG), 6)  # direct: 0.828733
     0.828733
     >>> round(frj.e_table(tab, 10.0, 0.005, 0.33, frj.ETSION), 6)  # direct: 0.865202
     0.865202
     """
-    code = material_index(unloading)  # int64; -1 for a fraction, a negative or non-finite code
-    if code < 0:
-        return np.nan
-    return table_value(tab, 1 + 2 * code, v1_star, eps_y, nu)
+    return _model_value(tab, 1, v1_star, eps_y, nu, unloading)
 
 
 @jit(inline=True)
+@doc(_DOC)
 def loss_table(tab, v1_star, eps_y, nu, unloading):
     """Dissipated fraction 1 - e^2 at (V1*, eps_y, nu) from a table (-).
 
-    Parameters
-    ----------
-    tab : TableData
-        A table's data, ``fastrest.load_table().data`` (:class:`fastrest.Table`).
-    v1_star : float
-        Normalised impact speed V1/V_c (-), >= 0.
-    eps_y : float
-        Sy/E' (-), inside the table's eps_y range (the shipped table: 0.0005-0.01).
-    nu : float
-        Poisson's ratio (-), inside the table's nu range (the shipped table: 0.2-0.45).
-    unloading : int
-        Unloading model code: :data:`JCG` (eq 35), :data:`ETSION` (eqs 33-34) or :data:`BRAKE`.
+    Interpolates :func:`fastrest.direct.loss_exact` (JGM eqs 16, 38, computed without
+    cancellation) stored in the table.
+
+    {table_params_unloading}
 
     Returns
     -------
     float
-        1 - e^2 (-); NaN outside the table's domain (negative or NaN speed, material outside its
-        grid, a point past w_m* = 425 or a/R = 1), or a model the table does not hold: a jit
-        kernel, it never raises.
+        1 - e^2 (-).
+        {table_nan_unloading}
 
-    Notes
-    -----
-    Interpolates :func:`fastrest.direct.loss_exact` (JGM eqs 16, 38, computed without
-    cancellation) stored in the table. Inlined into the calling jitted loop.
-
-    Examples
-    --------
-    >>> import fastrest
-    >>> from fastrest import jit as frj
-    >>> tab = fastrest.load_table().data
+    {examples_table}
     >>> round(frj.loss_table(tab, 10.0, 0.005, 0.33, frj.JCG), 6)  # direct: 0.313202
     0.313202
     """
-    code = material_index(unloading)
-    if code < 0:
-        return np.nan
-    return table_value(tab, 2 + 2 * code, v1_star, eps_y, nu)
+    return _model_value(tab, 2, v1_star, eps_y, nu, unloading)
 
 
 @jit(inline=True)
+@doc(_DOC)
 def omega_m_material(scene, v1_star, material):
     """Normalised maximum interference w_m* of one material of a scene at V1* (-).
 
-    Parameters
-    ----------
-    scene : SceneData
-        A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
-    v1_star : float
-        Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
-    material : int
-        Material index into the scene, 0 <= material < number of materials.
+    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_exact`) on the
+    material's curve cells (docs/model.md section 7).
+
+    {material_params}
 
     Returns
     -------
     float
-        w_m* (-); NaN for a material index out of range, a negative or NaN speed, or one above the
-        scene's v_max (a jit kernel: it never raises).
+        w_m* (-).
+        {material_nan}
 
-    Notes
-    -----
-    Interpolates the exact solution of JGM eq (29) (:func:`fastrest.direct.omega_m_exact`) on the
-    material's curve cells (docs/model.md section 7). Inlined into the calling jitted loop.
-
-    Examples
-    --------
-    >>> import fastrest
-    >>> from fastrest import jit as frj
-    >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
+    {examples_scene}
     >>> round(frj.omega_m_material(sc, 10.0, 0), 6), round(frj.omega_m_material(sc, 300.0, 1), 6)
     (6.549856, 126.263984)
     """
@@ -231,37 +234,23 @@ def omega_m_material(scene, v1_star, material):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def e_material(scene, v1_star, material):
     """Coefficient of restitution e of one material of a scene at V1* (-).
 
-    Parameters
-    ----------
-    scene : SceneData
-        A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
-    v1_star : float
-        Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
-    material : int
-        Material index into the scene, 0 <= material < number of materials.
+    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_exact`) on the
+    material's curve cells.
+
+    {material_params}
 
     Returns
     -------
     float
-        e (-) with the scene's unloading model; NaN for a material index out of range, a
-        negative or NaN speed, or one above the scene's v_max (a jit kernel: it never raises).
+        e (-) with the scene's unloading model.
+        {material_nan}
 
-    Notes
-    -----
-    Interpolates the exact e of JGM eqs (16), (38) (:func:`fastrest.direct.e_exact`) on the
-    material's curve cells. Inlined into the calling jitted loop.
-
-    Examples
-    --------
-    JGM check values (docs/model.md section 3):
-
-    >>> import fastrest
-    >>> from fastrest import jit as frj
-    >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
-    >>> round(frj.e_material(sc, 10.0, 0), 9), round(frj.e_material(sc, 300.0, 1), 9)
+    {examples_scene}
+    >>> round(frj.e_material(sc, 10.0, 0), 9), round(frj.e_material(sc, 300.0, 1), 9)  # JGM check values
     (0.828732573, 0.405336002)
     >>> frj.e_material(sc, 10.0, 2)  # no material 2
     nan
@@ -270,34 +259,22 @@ def e_material(scene, v1_star, material):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def loss_material(scene, v1_star, material):
     """Dissipated fraction 1 - e^2 of one material of a scene at V1* (-).
 
-    Parameters
-    ----------
-    scene : SceneData
-        A scene's data, ``fastrest.scene(...).data`` (:class:`fastrest.Scene`).
-    v1_star : float
-        Normalised impact speed V1/V_c (-), 0 <= v1_star <= the scene's v_max.
-    material : int
-        Material index into the scene, 0 <= material < number of materials.
+    Interpolates :func:`fastrest.direct.loss_exact` (JGM eqs 16, 38, without cancellation) on the
+    material's curve cells.
+
+    {material_params}
 
     Returns
     -------
     float
-        1 - e^2 (-) with the scene's unloading model; NaN for a material index out of range, a
-        negative or NaN speed, or one above the scene's v_max (a jit kernel: it never raises).
+        1 - e^2 (-) with the scene's unloading model.
+        {material_nan}
 
-    Notes
-    -----
-    Interpolates :func:`fastrest.direct.loss_exact` (JGM eqs 16, 38, without cancellation) on the
-    material's curve cells. Inlined into the calling jitted loop.
-
-    Examples
-    --------
-    >>> import fastrest
-    >>> from fastrest import jit as frj
-    >>> sc = fastrest.scene([(0.005, 0.33), (0.001, 0.25)], v_max=300.0).data
+    {examples_scene}
     >>> round(frj.loss_material(sc, 10.0, 0), 6)
     0.313202
     """

@@ -9,9 +9,8 @@ material k's curve gives. In Numba code: :func:`fastrest.jit.e_material`.
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
-import typing
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Sequence
+from typing import Any
 from numpy.typing import ArrayLike, NDArray
 import math
 from collections import namedtuple
@@ -22,6 +21,7 @@ import numpy as np
 from numba.extending import overload
 
 from ._deprecation import alias
+from ._doc import doc, paragraphs
 from ._jit import jit
 from ._validation import (OMEGA_M_STAR_MAX, ExtrapolationWarning, as_float_array, broadcast_named, check_velocity,
                           kernel_array, warn)
@@ -29,9 +29,20 @@ from ._validation import short_repr as _short
 from .cells import N_HERTZ
 from .curve import Curve, _curve
 from .curve_data import curve_value
+from .fastpath import scene_quantity
 from .unloading import get as unloading_model, warn_if_unfitted
 
 __all__ = ["SceneData", "material_index", "scene_value", "scene_array", "Scene", "scene"]
+
+# The first parameters of the scene kernels, written once (fastrest._doc).
+_DOC = paragraphs(params_data="""
+    Parameters
+    ----------
+    data : SceneData
+        The scene's data, ``Scene.data``.
+    what : int
+        0 w_m*, 1 e, 2 1 - e^2.
+    """)
 
 SceneData = namedtuple("SceneData", ["model", "v_max", "shift", "base", "offset", "omega_rows",
                                      "e_rows", "loss_rows"])
@@ -113,15 +124,11 @@ def _material_index_impl(k):
 
 
 @jit(inline=True)
+@doc(_DOC)
 def scene_value(data, what, k_in, v_in):
     """Quantity ``what`` of material k at V1* from a scene's data, in Numba code.
 
-    Parameters
-    ----------
-    data : SceneData
-        ``Scene.data``.
-    what : int
-        0 w_m*, 1 e, 2 1 - e^2.
+    {params_data}
     k_in : int or float
         Material index (:func:`material_index`).
     v_in : float
@@ -158,15 +165,11 @@ def scene_value(data, what, k_in, v_in):
 
 
 @jit
+@doc(_DOC)
 def scene_array(data, what, k, v, out):
     """out[i] = quantity ``what`` of material k[i] at V1* = v[i] (0 w_m*, 1 e, 2 1 - e^2).
 
-    Parameters
-    ----------
-    data : SceneData
-        ``Scene.data``.
-    what : int
-        0 w_m*, 1 e, 2 1 - e^2.
+    {params_data}
     k, v : ndarray
         1-D int64 material indices and float64 V1* (-), of one length.
     out : ndarray
@@ -250,7 +253,7 @@ _QUANTITIES = (
 )
 
 
-def _quantity_method(what):
+def _quantity_method(what: int) -> Callable[..., float | NDArray[np.float64]]:
     name, summary, returns, notes, example = _QUANTITIES[what]
 
     def method(self: Scene, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
@@ -357,40 +360,10 @@ class Scene:
         out = out.reshape(shape)
         return float(out) if out.ndim == 0 else out
 
-    if TYPE_CHECKING:  # what mypy sees: a scalar in gives a float out, a sequence an array
-        @typing.overload
-        def omega_m(self, v1_star: float, material: int) -> float: ...
-        @typing.overload
-        def omega_m(self, v1_star: Sequence[float], material: ArrayLike) -> NDArray[np.float64]: ...
-        @typing.overload
-        def omega_m(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]: ...
-
-        def omega_m(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
-            return self._eval(0, v1_star, material)
-
-        @typing.overload
-        def e(self, v1_star: float, material: int) -> float: ...
-        @typing.overload
-        def e(self, v1_star: Sequence[float], material: ArrayLike) -> NDArray[np.float64]: ...
-        @typing.overload
-        def e(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]: ...
-
-        def e(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
-            return self._eval(1, v1_star, material)
-
-        @typing.overload
-        def loss(self, v1_star: float, material: int) -> float: ...
-        @typing.overload
-        def loss(self, v1_star: Sequence[float], material: ArrayLike) -> NDArray[np.float64]: ...
-        @typing.overload
-        def loss(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]: ...
-
-        def loss(self, v1_star: ArrayLike, material: ArrayLike) -> float | NDArray[np.float64]:
-            return self._eval(2, v1_star, material)
-    else:
-        omega_m = _quantity_method(0)
-        e = _quantity_method(1)
-        loss = _quantity_method(2)
+    # a float in gives a float out, a sequence an array (fastrest.fastpath.SceneQuantity)
+    omega_m = scene_quantity(_quantity_method(0))
+    e = scene_quantity(_quantity_method(1))
+    loss = scene_quantity(_quantity_method(2))
 
 
 def scene(materials: Sequence[tuple[float, ...]], unloading: str = "jcg", *, v_max: float | None = None,

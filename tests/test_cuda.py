@@ -182,7 +182,7 @@ bad = {
     "table_host": (lambda: fc.e_table(tab.data, dvt, deps, dnu), "TypeError", ["tab", "to_device"]),
     "state_shape": (lambda: fc.contact_force(dl, fc.new_state(3), fc.to_device(np.zeros(4))), "ValueError", ["state", "(4, 4)"]),
     "state_host": (lambda: fc.contact_force(dl, np.zeros((4, 4)), fc.to_device(np.zeros(4))), "TypeError", ["state", "host"]),
-    "law_host": (lambda: fc.contact_force(law.data, fc.new_state(4), fc.to_device(np.zeros(4))), "TypeError", ["law", "to_device"]),
+    "law_host": (lambda: fc.contact_force(law.data, fc.new_state(4), fc.to_device(np.zeros(4))), "TypeError", ["data", "to_device"]),
     "stacked_for_law": (lambda: fc.contact_force(dls, fc.new_state(4), fc.to_device(np.zeros(4))), "TypeError", ["law"]),
     "new_state": (lambda: fc.new_state(-1), "ValueError", ["n"]),
     "to_device": (lambda: fc.to_device("curve"), "TypeError", ["to_device", "str"]),

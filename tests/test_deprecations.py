@@ -223,6 +223,21 @@ def test_the_keyword_only_decorator():
         keyword_only("a")(lambda a, *, b=1: a)
 
 
+def test_the_renamed_decorator():
+    """A renamed parameter (``fastrest.cuda.contact_force``: law= -> data=) keeps its old keyword."""
+    from fastrest._deprecation import renamed
+
+    @renamed(law="data")
+    def f(data, state=0):
+        return data, state
+
+    assert f(1) == (1, 0) and f(data=1, state=2) == (1, 2)
+    assert _warns("data=", lambda: f(law=3, state=4)) == (3, 4)
+    assert f.__name__ == "f"
+    with pytest.raises(TypeError, match="both"):
+        f(law=1, data=2)
+
+
 def test_impact_omega_m_warns():
     steel = fastrest.Material(200e9, 0.33, 1.12e9)
     imp = fastrest.Impact(steel, 0.01, mass=0.0327)

@@ -19,8 +19,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[1] / "fastrest"
 # top. A module may import its own layer or lower ones, never a higher one. Modules not listed
 # are top-level APIs (jit, models, rough, export, figures, cli, the package itself).
 LAYERS = [
-    ("plumbing", ["fastrest._version", "fastrest._deprecation", "fastrest._jit", "fastrest._validation",
-                  "fastrest._threads", "fastrest._provenance", "fastrest.fastpath", "fastrest.interpolation"]),
+    ("plumbing", ["fastrest._version", "fastrest._deprecation", "fastrest._doc", "fastrest._jit",
+                  "fastrest._validation", "fastrest._threads", "fastrest._provenance", "fastrest.fastpath", "fastrest.interpolation"]),
     ("material and critical values", ["fastrest.critical", "fastrest.materials"]),
     ("loading laws", ["fastrest.loading", "fastrest.loading.*"]),
     ("loading law, validated", ["fastrest.contact"]),

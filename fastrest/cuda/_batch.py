@@ -8,10 +8,33 @@ from ..curve_data import CurveData
 from ..forward import ForwardData
 from ..scene import SceneData
 from ..tables import TableData
+from .._deprecation import renamed
+from .._doc import doc, fill, paragraphs
 from ._device import _check_array, _check_code, _check_data, _check_out, _check_state, _launch
 
 __all__ = ["omega_m_curve", "e_curve", "loss_curve", "omega_m_material", "e_material", "loss_material",
            "omega_m_table", "e_table", "loss_table", "contact_force", "contact_force_stacked"]
+
+# The parameters v1_star, out and stream of the batch functions, written once (fastrest._doc; in the
+# templates below, formatted first, ``{{name}}`` is such a paragraph).
+_DOC = paragraphs(
+    v1_star_points="""
+        v1_star : device array
+            1-D float64 normalised impact speeds V1/V_c (-).
+        """,
+    out_stream_points="""
+        out : device array, optional
+            1-D float64 of the length of ``v1_star``, written in place; allocated when not given.
+        stream : numba.cuda stream, optional
+            Stream of the launch (keyword-only; default the default stream). The call returns at once.
+        """,
+    out_stream="""
+        out : device array, optional
+            1-D float64 of length n, written in place; allocated when not given.
+        stream : numba.cuda stream, optional
+            Stream of the launch (keyword-only; default the default stream). The call returns at once.
+        """,
+)
 
 # --- batch functions --------------------------------------------------------------------------
 
@@ -21,12 +44,8 @@ Parameters
 ----------
 data : CurveData
     A curve's data on the device: ``fastrest.cuda.to_device(fastrest.curve(...))``.
-v1_star : device array
-    1-D float64 normalised impact speeds V1/V_c (-).
-out : device array, optional
-    1-D float64 of the length of ``v1_star``, written in place; allocated when not given.
-stream : numba.cuda stream, optional
-    Stream of the launch (keyword-only; default the default stream). The call returns at once.
+{{v1_star_points}}
+{{out_stream_points}}
 
 Returns
 -------
@@ -67,7 +86,7 @@ def _curve_function(name: str, what: str, unit: str, eqs: str, example: str) -> 
         return out
 
     f.__name__ = f.__qualname__ = name
-    f.__doc__ = _CURVE_DOC.format(what=what, name=name, unit=unit, eqs=eqs, example=example)
+    f.__doc__ = fill(_CURVE_DOC.format(what=what, name=name, unit=unit, eqs=eqs, example=example), _DOC)
     return f
 
 
@@ -85,15 +104,11 @@ Parameters
 ----------
 scene : SceneData
     A scene's data on the device: ``fastrest.cuda.to_device(fastrest.scene(...))``.
-v1_star : device array
-    1-D float64 normalised impact speeds V1/V_c (-).
+{{v1_star_points}}
 material : device array
     1-D integer (any integer dtype) material index of each point into the scene, of the length of
     ``v1_star``.
-out : device array, optional
-    1-D float64 of the length of ``v1_star``, written in place; allocated when not given.
-stream : numba.cuda stream, optional
-    Stream of the launch (keyword-only). The call returns at once.
+{{out_stream_points}}
 
 Returns
 -------
@@ -135,7 +150,7 @@ def _material_function(name: str, what: str, eqs: str, example: str) -> Callable
         return out
 
     f.__name__ = f.__qualname__ = name
-    f.__doc__ = _MATERIAL_DOC.format(what=what, name=name, eqs=eqs, example=example)
+    f.__doc__ = fill(_MATERIAL_DOC.format(what=what, name=name, eqs=eqs, example=example), _DOC)
     return f
 
 
@@ -153,14 +168,11 @@ Parameters
 ----------
 tab : TableData
     A table's data on the device: ``fastrest.cuda.to_device(fastrest.load_table())``.
-v1_star : device array
-    1-D float64 normalised impact speeds V1/V_c (-).
+{{v1_star_points}}
 eps_y, nu : device array
     1-D float64 Sy/E' (-) and Poisson's ratio (-) of each point, of the length of ``v1_star``.
-{model}out : device array, optional
-    1-D float64 of the length of ``v1_star``, written in place; allocated when not given.
-stream : numba.cuda stream, optional
-    Stream of the launch (keyword-only). The call returns at once.
+{{unloading_param}}
+{{out_stream_points}}
 
 Returns
 -------
@@ -222,11 +234,11 @@ def _table_function(name: str, what: str, eqs: str, example: str, with_model: bo
             return out
 
     f.__name__ = f.__qualname__ = name
-    f.__doc__ = _TABLE_DOC.format(
-        what=what, name=name, eqs=eqs, example=example, model=_MODEL_PARAM if with_model else "",
+    f.__doc__ = fill(_TABLE_DOC.format(
+        what=what, name=name, eqs=eqs, example=example,
         nan_model=", or a model the table does not hold" if with_model else "",
         bad_model="; ``unloading`` not an integer" if with_model else "",
-        call=", fastrest.jit.JCG" if with_model else "")
+        call=", fastrest.jit.JCG" if with_model else ""), _DOC, unloading_param=_MODEL_PARAM if with_model else "")
     return f
 
 
@@ -238,23 +250,22 @@ loss_table = _table_function("loss_table", "Dissipated fraction 1 - e^2", "eq (3
                              "array([0.313202,      nan])", True)
 
 
-def contact_force(law: ForwardData, state: Any, w: Any, out: Any = None, *, stream: Any = 0) -> Any:
+@renamed(law="data")
+@doc(_DOC)
+def contact_force(data: ForwardData, state: Any, w: Any, out: Any = None, *, stream: Any = 0) -> Any:
     """One time step of many contacts of one material: the normal force of each, with its history.
 
     Parameters
     ----------
-    law : ForwardData
+    data : ForwardData
         A contact law's data on the device: ``fastrest.cuda.to_device(fastrest.contact_law(...))``
-        (normalised: w = omega/omega_c, P* = P/P_c).
+        (normalised: w = omega/omega_c, P* = P/P_c). ``law=`` is a deprecated name of it.
     state : device array
         (n, :data:`fastrest.jit.STATE_SIZE`) float64 history, one row per contact (zeros for a
         virgin contact: :func:`new_state`); updated in place.
     w : device array
         1-D float64 interference of each contact at this step, omega/omega_c (-).
-    out : device array, optional
-        1-D float64 of length n, written in place; allocated when not given.
-    stream : numba.cuda stream, optional
-        Stream of the launch (keyword-only). The call returns at once.
+    {out_stream}
 
     Returns
     -------
@@ -265,7 +276,7 @@ def contact_force(law: ForwardData, state: Any, w: Any, out: Any = None, *, stre
     Raises
     ------
     TypeError
-        ``law`` not a contact law's data (ForwardData), or one with host arrays; an array on the
+        ``data`` not a contact law's data (ForwardData), or one with host arrays; an array on the
         host or not float64.
     ValueError
         ``w`` or ``out`` not 1-D, lengths that differ, or ``state`` not (n, STATE_SIZE).
@@ -281,22 +292,23 @@ def contact_force(law: ForwardData, state: Any, w: Any, out: Any = None, *, stre
     Examples
     --------
     >>> import numpy as np, fastrest, fastrest.cuda
-    >>> law = fastrest.cuda.to_device(fastrest.contact_law(0.005, 0.33, w_max=30.0))
+    >>> data = fastrest.cuda.to_device(fastrest.contact_law(0.005, 0.33, w_max=30.0))
     >>> state = fastrest.cuda.new_state(2)
-    >>> fastrest.cuda.contact_force(law, state, fastrest.cuda.to_device(np.array([10.0, -1.0]))).copy_to_host().round(6)
+    >>> fastrest.cuda.contact_force(data, state, fastrest.cuda.to_device(np.array([10.0, -1.0]))).copy_to_host().round(6)
     array([25.647583,  0.      ])
-    >>> fastrest.cuda.contact_force(law, state, fastrest.cuda.to_device(np.array([5.0, 0.5]))).copy_to_host().round(6)
+    >>> fastrest.cuda.contact_force(data, state, fastrest.cuda.to_device(np.array([5.0, 0.5]))).copy_to_host().round(6)
     array([2.401153, 0.353553])
     """
-    _check_data(law, ForwardData, "law", "a contact law's data (ForwardData)")
+    _check_data(data, ForwardData, "data", "a contact law's data (ForwardData)")
     _check_array(w, "w")
     n = w.shape[0]
     _check_state(state, n)
     out = _check_out(out, n, stream)
-    _launch("contact_force", "contact", n, stream, law, state, w, out)
+    _launch("contact_force", "contact", n, stream, data, state, w, out)
     return out
 
 
+@doc(_DOC)
 def contact_force_stacked(laws: StackedLaws, material: Any, state: Any, w: Any, out: Any = None, *,
                           stream: Any = 0) -> Any:
     """One time step of many contacts of several materials (:func:`contact_force` per material).
@@ -311,10 +323,7 @@ def contact_force_stacked(laws: StackedLaws, material: Any, state: Any, w: Any, 
         (n, :data:`fastrest.jit.STATE_SIZE`) float64 history, one row per contact; updated in place.
     w : device array
         1-D float64 interference of each contact, omega/omega_c of its material's law (-).
-    out : device array, optional
-        1-D float64 of length n, written in place; allocated when not given.
-    stream : numba.cuda stream, optional
-        Stream of the launch (keyword-only). The call returns at once.
+    {out_stream}
 
     Returns
     -------

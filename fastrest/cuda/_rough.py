@@ -26,7 +26,7 @@ _ROUGH_ROWS = {"hertz": _explicit._hertz_row, "jg": _explicit._jg_row, "impact":
 
 
 def _rough_kernel_function(row):
-    """The Python source of a kernel summing ``row(law, w, d, r_i, onset)`` (4 values) over the summits
+    """The Python source of a kernel summing ``row(data, w, d, r_i, onset)`` (4 values) over the summits
     in contact, exactly as :func:`fastrest.rough.explicit._block_sums` does on the CPU: block b
     writes its partial sums to ``part[b]``.
 
@@ -38,7 +38,7 @@ def _rough_kernel_function(row):
     """
     tpb = _ROUGH_THREADS
 
-    def kernel(law, h, r, descending, x, delta, onset, part):
+    def kernel(data, h, r, descending, x, delta, onset, part):
         sm = cuda.shared.array((tpb, 4), _f8)
         t = cuda.threadIdx.x
         i = cuda.grid(1)
@@ -47,7 +47,7 @@ def _rough_kernel_function(row):
         while i < h.size:
             if h[i] + x > 0.0:
                 w, d = summit_w(h[i], r[i], x, delta)
-                r0, r1, r2, r3 = row(law, w, d, r[i], onset)
+                r0, r1, r2, r3 = row(data, w, d, r[i], onset)
                 s0 += r0
                 s1 += r1
                 s2 += r2
@@ -89,7 +89,8 @@ class _RoughSums:
         self.part = cuda.device_array((self.blocks, 4), dtype=np.float64)
         self.tables: list[Any] = []  # (host ForwardData, its device copy)
 
-    def law(self, data):
+    def on_device(self, data):
+        """The device copy of the forward table ``data`` (one kept: the latest)."""
         for host, dev in self.tables:
             if host is data:
                 return dev
@@ -97,16 +98,16 @@ class _RoughSums:
         self.tables[:] = [(data, dev)]
         return dev
 
-    def __call__(self, kind, law, x, delta):
+    def __call__(self, kind, data, x, delta):
         if kind not in _ROUGH_KERNELS:
             _ROUGH_KERNELS[kind] = cuda.jit(_rough_kernel_function(_ROUGH_ROWS[kind]))
         onset = abs(delta) < _ONSET_BAND
-        _ROUGH_KERNELS[kind][self.blocks, _ROUGH_THREADS](law, self.h, self.r, self.descending, x, delta, onset,
+        _ROUGH_KERNELS[kind][self.blocks, _ROUGH_THREADS](data, self.h, self.r, self.descending, x, delta, onset,
                                                             self.part)
         return _explicit._add_blocks(self.part.copy_to_host())
 
 
-def _rough_approach(sums, kind, law, e_hi, e_lo, x0, d0, w_table, w_model):
+def _rough_approach(sums, kind, data, e_hi, e_lo, x0, d0, w_table, w_model):
     """(status, x, delta): :func:`fastrest.rough.explicit._approach` with the sums on the device
     (the same safeguarded Newton step, :func:`~fastrest.rough.explicit._advance`, on the host)."""
     w_cap = _explicit.x_reaching(sums.h_host, sums.r_host, min(w_table, w_model))
@@ -117,7 +118,7 @@ def _rough_approach(sums, kind, law, e_hi, e_lo, x0, d0, w_table, w_model):
             if not (w_table >= w_model and st[LO_X] < w_cap):
                 return _NEEDS_TABLE, st[X], st[D]
             st[X], st[D] = w_cap, w_cap - 1.0
-        t = sums(kind, law, float(st[X]), float(st[D]))
+        t = sums(kind, data, float(st[X]), float(st[D]))
         if _explicit._advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
             return (_OK if st[X] <= w_cap else _NEEDS_TABLE), st[X], st[D]
     return _FAILED, st[X], st[D]
@@ -204,15 +205,15 @@ def rough_impact(surface: Any, V1: Any, M: float, unloading: str = "jcg", *, ext
                 raise RuntimeError("rough-surface solver (Hertz estimate) did not converge (please report)")
 
         def run(data, w_model):  # explicit._explicit_impacts_array
-            law = sums.law(data)
+            dev = sums.on_device(data)
             out = np.zeros((8, e_hi.size))
             for k in range(e_hi.size):
-                status, x, d = _rough_approach(sums, "jg", law, e_hi[k], e_lo[k], x0[k], d0[k], data.w_max,
+                status, x, d = _rough_approach(sums, "jg", dev, e_hi[k], e_lo[k], x0[k], d0[k], data.w_max,
                                                w_model)
                 w_top = _explicit.largest_w(sums.h_host, sums.r_host, x)
                 out[0, k], out[1, k], out[2, k], out[3, k] = status, w_top, x, w_top
                 if status == _OK:
-                    out[4:, k] = sums("impact", law, float(x), float(d))
+                    out[4:, k] = sums("impact", dev, float(x), float(d))
             return out
 
         return surface._solve(run, 2.0 * float(_explicit.largest_w(sums.h_host, sums.r_host, float(x0.max()))),

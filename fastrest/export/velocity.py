@@ -26,7 +26,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .._validation import ValidityWarning, real_scalar, warn
+from .._validation import ValidityWarning, check_tol, real_scalar, warn
 from ..curve_data import build_curve_data, curve_array
 from ..direct import impact_array
 from ..limits import speed_limit
@@ -169,12 +169,8 @@ def _direct(v, eps_y, nu, et_ratio=0.0, law=0):
     return out
 
 
-def _check_tol(tol):
-    tol = real_scalar(tol, "tol")
-    if not (TOL_MIN <= tol < 1.0):
-        raise ValueError(f"tol must be in [{TOL_MIN:g}, 1) (absolute error of e and 1 - e^2, relative of w_m*); "
-                         f"got {tol!r}")
-    return tol
+#: What the tol of a velocity table bounds (error messages of :func:`~fastrest._validation.check_tol`).
+_TOL_MEANING = "absolute error of e and 1 - e^2, relative of w_m*"
 
 
 def velocity_table(impact: Impact, V_max: float | None, tol: float) -> dict[str, Any]:
@@ -190,7 +186,7 @@ def velocity_table(impact: Impact, V_max: float | None, tol: float) -> dict[str,
     """
     if not isinstance(impact, Impact):
         raise TypeError(f"impact must be a fastrest.Impact, got {impact!r} ({type(impact).__name__})")
-    tol = _check_tol(tol)
+    tol = check_tol(tol, TOL_MIN, _TOL_MEANING)
     V_max = real_scalar(V_max, "V_max")
     Vc = impact.V_c
     h, law = impact.et_ratio, loading_law(impact.loading)
@@ -316,7 +312,7 @@ def write_velocity(out: str | os.PathLike[str], pairs: Sequence[Pair], tol: floa
     names = [p.get("name") for p in pairs]
     if len(pairs) > 1 and len(set(names)) < len(names):
         raise ValueError(f"pairs: duplicate pair names {sorted({n for n in names if names.count(n) > 1})}")
-    tol = _check_tol(tol)
+    tol = check_tol(tol, TOL_MIN, _TOL_MEANING)
     if V_max is not None:
         V_max = real_scalar(V_max, "V_max")
     csvs, json_path = _paths(out, pairs)

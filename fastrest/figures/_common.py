@@ -1,10 +1,49 @@
-"""What every figure shares: the Table 1 material, colours and labels, axes, speed grids."""
+"""What every figure shares: the Table 1 material, colours and labels, axes, speed grids, and the
+parameters, Returns and Raises of their docstrings."""
 import numpy as np
 
+from .._doc import paragraphs
 from ..limits import limit
 
-__all__ = ["TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES", "COLOURS", "LABELS", "new_axes", "eps_colours",
-           "eps_label", "omega_grid", "v_grid", "finish_axes"]
+__all__ = ["TABLE1_EPS_Y", "TABLE1_NU", "EPS_Y_SERIES", "COLOURS", "LABELS", "FIGURE_DOC", "new_axes",
+           "eps_colours", "eps_label", "omega_grid", "v_grid", "mark", "finish_axes"]
+
+#: The docstring paragraphs every figure function shares (:func:`fastrest._doc.doc`).
+FIGURE_DOC = paragraphs(
+    param_ax="""
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
+        """,
+    params_series="""
+        {param_ax}
+        eps_y : sequence of float
+            Sy/E' (-) of each curve; default :data:`~fastrest.figures.EPS_Y_SERIES`.
+        nu : float
+            Poisson's ratio (-); default 0.33 (JGM Table 1).
+        n : int
+            Points per curve.
+        """,
+    returns="""
+        Returns
+        -------
+        fig : matplotlib.figure.Figure
+            The figure of ``ax``, or the new one.
+        ax : matplotlib.axes.Axes
+            The axes drawn into.
+
+        Raises
+        ------
+        ImportError
+            Matplotlib is not installed (``pip install fastrest[plot]``).
+        """,
+    returns_material="""
+        {returns}
+        ValueError
+            eps_y or nu outside the model's domain (eps_y > 0, 0 <= nu < 0.5).
+        """,
+)
 
 #: JGM Table 1 benchmark (eps_y = 0.005, nu = 0.33), used by Figs 2-6 unless stated otherwise.
 TABLE1_EPS_Y = 0.005
@@ -70,6 +109,13 @@ def v_grid(eps_y, nu, v_lo, n):
     v[-1] = v_hi
     extra = [1.0, V_SWITCH, np.nextafter(V_SWITCH, np.inf)]
     return np.unique(np.concatenate([v, [x for x in extra if v_lo <= x <= v_hi]]))
+
+
+def mark(ax, value, text, at, *, vertical, offset):
+    """A dotted black reference line at ``value`` (x if ``vertical``, else y), labelled ``text`` at
+    the data point ``at``, shifted by ``offset`` points."""
+    (ax.axvline if vertical else ax.axhline)(value, color="k", lw=0.8, ls=":")
+    ax.annotate(text, at, xytext=offset, textcoords="offset points", fontsize=8)
 
 
 def finish_axes(ax, *, xlabel, ylabel, title, xlim, ylim=None, xlog=True, ylog=False, legend_loc,

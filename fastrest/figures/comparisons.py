@@ -10,8 +10,9 @@ import numpy as np
 
 from .. import direct
 from .. import models
-from ._common import (COLOURS, EPS_Y_SERIES, LABELS, TABLE1_EPS_Y, TABLE1_NU, eps_colours, eps_label, finish_axes,
-                      new_axes, v_grid)
+from .._doc import doc
+from ._common import (COLOURS, EPS_Y_SERIES, FIGURE_DOC, LABELS, TABLE1_EPS_Y, TABLE1_NU, eps_colours, eps_label,
+                      finish_axes, new_axes, v_grid)
 
 __all__ = ["figure5", "figure6"]
 
@@ -19,6 +20,7 @@ _V_LABEL = r"normalised impact speed $V_1^* = V_1/V_c$ (eq 30) [-]"
 _E_LABEL = r"coefficient of restitution $e = V_2/V_1$ (eq 16) [-]"
 
 
+@doc(FIGURE_DOC)
 def figure5(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu: float = TABLE1_NU,
             n: int = 400) -> tuple[Figure, Axes]:
     """JGM Fig 5: e against V1* for several eps_y, this model (JCG unloading, eq 35) and Chang-Ling.
@@ -26,30 +28,9 @@ def figure5(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     Chang & Ling's eq (1) (CEB contact law; see :func:`fastrest.models.chang_ling` for the reading
     of the misprinted equation) does not depend on eps_y once V1 is normalised by V_c: one curve.
 
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
-    eps_y : sequence of float
-        Sy/E' (-) of each JGM curve; default :data:`~fastrest.figures.EPS_Y_SERIES`.
-    nu : float
-        Poisson's ratio (-); default 0.33 (JGM Table 1).
-    n : int
-        Points per curve.
+    {params_series}
 
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-        The figure of ``ax``, or the new one.
-    ax : matplotlib.axes.Axes
-        The axes drawn into.
-
-    Raises
-    ------
-    ImportError
-        Matplotlib is not installed (``pip install fastrest[plot]``).
-    ValueError
-        eps_y or nu outside the model's domain (eps_y > 0, 0 <= nu < 0.5).
+    {returns_material}
 
     Notes
     -----
@@ -58,9 +39,9 @@ def figure5(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     Examples
     --------
     >>> from fastrest.figures import figure5
-    >>> fig, ax = figure5(eps_y=(0.005,), n=20)
+    >>> fig, ax = figure5(eps_y=(0.002, 0.005), n=20)
     >>> len(ax.lines)
-    2
+    3
     """
     fig, ax = new_axes(ax)
     v_lo = 0.5
@@ -79,6 +60,7 @@ def figure5(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     return fig, ax
 
 
+@doc(FIGURE_DOC)
 def figure6(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = TABLE1_NU, n: int = 400) -> tuple[Figure, Axes]:
     """JGM Fig 6: e against V1* with JCG (eq 35) and Etsion (eq 33) unloading, and Wu et al.
 
@@ -89,10 +71,7 @@ def figure6(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = 
     Eq (40) exceeds 1 for V1* < 2.08^4 = 18.7 (up to 2.08 just above V_c) and runs off the top of
     the plot, as the paper notes.
 
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
+    {param_ax}
     eps_y : float
         Sy/E' (-); default 0.005 (JGM Table 1).
     nu : float
@@ -100,19 +79,7 @@ def figure6(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = 
     n : int
         Points per curve.
 
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-        The figure of ``ax``, or the new one.
-    ax : matplotlib.axes.Axes
-        The axes drawn into.
-
-    Raises
-    ------
-    ImportError
-        Matplotlib is not installed (``pip install fastrest[plot]``).
-    ValueError
-        eps_y or nu outside the model's domain (eps_y > 0, 0 <= nu < 0.5).
+    {returns_material}
 
     Notes
     -----

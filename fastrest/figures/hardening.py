@@ -11,7 +11,8 @@ import numpy as np
 
 from .. import direct
 from ..limits import speed_limit
-from ._common import TABLE1_EPS_Y, TABLE1_NU, finish_axes, new_axes
+from .._doc import doc
+from ._common import FIGURE_DOC, TABLE1_EPS_Y, TABLE1_NU, finish_axes, new_axes
 
 __all__ = ["figure_hardening", "ET_RATIO_SERIES"]
 
@@ -19,15 +20,13 @@ __all__ = ["figure_hardening", "ET_RATIO_SERIES"]
 ET_RATIO_SERIES = (0.0, 0.001, 0.01, 0.05, 0.2)
 
 
+@doc(FIGURE_DOC)
 def figure_hardening(*, ax: Axes | None = None, et_ratio: Sequence[float] = ET_RATIO_SERIES,
                      eps_y: float = TABLE1_EPS_Y, nu: float = TABLE1_NU, unloading: str = "brake",
                      n: int = 300) -> tuple[Figure, Axes]:
     """e against V1* for several tangent moduli Et/E (Ghaednia et al. 2019), with Et/E = 0 (JG).
 
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
+    {param_ax}
     et_ratio : sequence of float
         Et/E (-) of each curve, each in [0, 1); default :data:`ET_RATIO_SERIES`.
     eps_y, nu : float
@@ -37,15 +36,7 @@ def figure_hardening(*, ax: Axes | None = None, et_ratio: Sequence[float] = ET_R
     n : int
         Points per curve.
 
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-    ax : matplotlib.axes.Axes
-
-    Raises
-    ------
-    ImportError
-        Matplotlib is not installed (``pip install fastrest[plot]``).
+    {returns}
     ValueError
         A parameter outside the model's domain.
 

@@ -13,12 +13,14 @@ from ..contact import P_star
 from ..energy import W_star
 from ..unloading import etsion
 from ..unloading.jcg import residual_ratio as jcg_residual_ratio
-from ._common import (COLOURS, EPS_Y_SERIES, TABLE1_EPS_Y, TABLE1_NU, eps_colours, eps_label, finish_axes, new_axes,
-                      omega_grid, v_grid)
+from .._doc import doc
+from ._common import (COLOURS, EPS_Y_SERIES, FIGURE_DOC, TABLE1_EPS_Y, TABLE1_NU, eps_colours, eps_label,
+                      finish_axes, mark, new_axes, omega_grid, v_grid)
 
 __all__ = ["figure2", "figure3", "figure4"]
 
 
+@doc(FIGURE_DOC)
 def figure2(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu: float = TABLE1_NU,
             n: int = 300) -> tuple[Figure, Axes]:
     """JGM Fig 2: normalised elasto-plastic energy -(W_ep)* (eq 25) against w* (eq 13), log axes.
@@ -27,30 +29,9 @@ def figure2(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     for several eps_y at nu = ``nu``, up to w* = 425. The Hertz value w*^2.5 - 1 (eq 19, no
     plasticity) is shown for reference.
 
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
-    eps_y : sequence of float
-        Sy/E' (-) of each curve; default :data:`~fastrest.figures.EPS_Y_SERIES`.
-    nu : float
-        Poisson's ratio (-); default 0.33 (JGM Table 1).
-    n : int
-        Points per curve.
+    {params_series}
 
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-        The figure of ``ax``, or the new one.
-    ax : matplotlib.axes.Axes
-        The axes drawn into.
-
-    Raises
-    ------
-    ImportError
-        Matplotlib is not installed (``pip install fastrest[plot]``).
-    ValueError
-        eps_y or nu outside the model's domain (eps_y > 0, 0 <= nu < 0.5).
+    {returns_material}
 
     Notes
     -----
@@ -78,6 +59,7 @@ def figure2(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     return fig, ax
 
 
+@doc(FIGURE_DOC)
 def figure3(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu: float = TABLE1_NU,
             n: int = 300) -> tuple[Figure, Axes]:
     """JGM Fig 3: normalised maximum interference w_m* (eq 31) against V1* = V1/V_c (eq 30).
@@ -85,30 +67,9 @@ def figure3(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     Solution of the energy balance (29) for several eps_y at nu = ``nu``, each up to its own
     w_m* = 425 (or a/R = 1). The Hertz value w_m* = V1*^(4/5) (no plasticity) for reference.
 
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
-    eps_y : sequence of float
-        Sy/E' (-) of each curve; default :data:`~fastrest.figures.EPS_Y_SERIES`.
-    nu : float
-        Poisson's ratio (-); default 0.33 (JGM Table 1).
-    n : int
-        Points per curve.
+    {params_series}
 
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-        The figure of ``ax``, or the new one.
-    ax : matplotlib.axes.Axes
-        The axes drawn into.
-
-    Raises
-    ------
-    ImportError
-        Matplotlib is not installed (``pip install fastrest[plot]``).
-    ValueError
-        eps_y or nu outside the model's domain (eps_y > 0, 0 <= nu < 0.5).
+    {returns_material}
 
     Notes
     -----
@@ -129,9 +90,7 @@ def figure3(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
         v = v_grid(eps, nu, 1.0, n)
         ax.plot(v, direct.omega_m_exact(v, eps, nu), color=col, lw=1.6,
                 label=f"JGM (eq 29), {eps_label(eps)}")
-    ax.axhline(425.0, color="k", lw=0.8, ls=":")
-    ax.annotate(r"model limit $\omega_m^*$ = 425", (1.1, 425.0), xytext=(0, 4),
-                textcoords="offset points", fontsize=8)
+    mark(ax, 425.0, r"model limit $\omega_m^*$ = 425", (1.1, 425.0), vertical=False, offset=(0, 4))
     finish_axes(ax, xlabel=r"normalised impact speed $V_1^* = V_1/V_c$ (eq 30) [-]",
                 ylabel=r"normalised maximum interference $\omega_m^* = \omega_m/\omega_c$ (eq 31) [-]",
                 title=rf"Fig. 3: maximum interference ($\nu$ = {nu:g})", xlim=(1.0, 1200.0), ylim=(0.8, 800.0),
@@ -139,6 +98,7 @@ def figure3(*, ax: Axes | None = None, eps_y: Sequence[float] = EPS_Y_SERIES, nu
     return fig, ax
 
 
+@doc(FIGURE_DOC)
 def figure4(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = TABLE1_NU, n: int = 400) -> tuple[Figure, Axes]:
     """JGM Fig 4: residual interference ratio w_res/w_m against w_m*: the JCG fit, eq (35).
 
@@ -147,10 +107,7 @@ def figure4(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = 
     eq (33) for one material (:mod:`fastrest.unloading.etsion`: w_res/w_m = 1 - P_m*/(sqrt(A_m*)
     w_m*) normalised) is drawn too.
 
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
+    {param_ax}
     eps_y : float
         Sy/E' (-) of the Etsion curve; default 0.005 (JGM Table 1).
     nu : float
@@ -158,19 +115,7 @@ def figure4(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = 
     n : int
         Points per curve.
 
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-        The figure of ``ax``, or the new one.
-    ax : matplotlib.axes.Axes
-        The axes drawn into.
-
-    Raises
-    ------
-    ImportError
-        Matplotlib is not installed (``pip install fastrest[plot]``).
-    ValueError
-        eps_y or nu outside the model's domain (eps_y > 0, 0 <= nu < 0.5).
+    {returns_material}
 
     Notes
     -----
@@ -193,9 +138,7 @@ def figure4(*, ax: Axes | None = None, eps_y: float = TABLE1_EPS_Y, nu: float = 
     r_ets = np.array([etsion.residual(w, w - 1.0, pm, eps_y, nu, 0, 0.0)[0] / w for w, pm in zip(we, p)])
     ax.plot(we, r_ets, color=COLOURS["etsion"], lw=1.4, ls="--",
             label=rf"Etsion et al., eq (33) ($\varepsilon_y$ = {eps_y:g}, $\nu$ = {nu:g})")
-    ax.axvline(1.9, color="k", lw=0.8, ls=":")
-    ax.annotate(r"JG law from $\omega^*$ = 1.9", (1.9, 0.9), xytext=(4, 0),
-                textcoords="offset points", fontsize=8)
+    mark(ax, 1.9, r"JG law from $\omega^*$ = 1.9", (1.9, 0.9), vertical=True, offset=(4, 0))
     finish_axes(ax, xlabel=r"normalised maximum interference $\omega_m^* = \omega_m/\omega_c$ [-]",
                 ylabel=r"residual interference ratio $\omega_{res}/\omega_m$ [-]",
                 title="Fig. 4: residual interference after unloading", xlim=(1.0, 425.0), ylim=(0.0, 1.0),

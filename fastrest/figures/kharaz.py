@@ -20,7 +20,8 @@ import numpy as np
 from .. import models
 from ..impact import Impact
 from ..materials import Material
-from ._common import COLOURS, LABELS, finish_axes, new_axes
+from .._doc import fill
+from ._common import COLOURS, FIGURE_DOC, LABELS, finish_axes, mark, new_axes
 
 __all__ = ["ALUMINA_DENSITY", "ALUMINA", "ALUMINIUM_FLAT", "STEEL_FLAT", "KHARAZ_RADIUS", "kharaz_impact", "figure7",
            "figure8"]
@@ -92,9 +93,7 @@ def _figure_kharaz(ax, flat, fig_no, v_max, n):
         if model == "wu":  # e = 1 up to V_c, then eq (40) jumps to 2.08: do not draw the jump
             e = np.where(V > imp.V_c, e, np.nan)
         ax.plot(V, e, color=COLOURS[model], lw=1.5, ls=ls, label=LABELS[model])
-    ax.axvline(imp.V_c, color="k", lw=0.8, ls=":")
-    ax.annotate(rf"$V_c$ (eq 28) = {imp.V_c * 1e3:.0f} mm/s", (imp.V_c, 0.12), xytext=(3, 0),
-                textcoords="offset points", fontsize=8)
+    mark(ax, imp.V_c, rf"$V_c$ (eq 28) = {imp.V_c * 1e3:.0f} mm/s", (imp.V_c, 0.12), vertical=True, offset=(3, 0))
     flat_name = {"aluminium": "an aluminium", "steel": "a steel"}[flat]
     table = {"aluminium": 3, "steel": 4}[flat]
     info = (f"inputs of JGM Table {table}; sphere mass m = {imp.mass * 1e3:.3f} g "
@@ -115,26 +114,13 @@ This model with both unloadings (eqs 33, 35), Thornton (eq 2), Wu et al. (eqs 39
 Weir-Tallon (eq 3). Mass and E' as in :func:`kharaz_impact`. Curves above e = 1.4 (Wu et al.
 and Weir-Tallon at low speed) run off the plot.
 
-Parameters
-----------
-ax : matplotlib.axes.Axes, optional
-    Axes to draw into; default a new pyplot-free Figure. All parameters are keyword-only.
+{{param_ax}}
 v_max : float
     Largest impact speed drawn (m/s).
 n : int
     Speeds per curve (plus 40 around V_c).
 
-Returns
--------
-fig : matplotlib.figure.Figure
-    The figure of ``ax``, or the new one.
-ax : matplotlib.axes.Axes
-    The axes drawn into.
-
-Raises
-------
-ImportError
-    Matplotlib is not installed (``pip install fastrest[plot]``).
+{{returns}}
 
 Notes
 -----
@@ -157,5 +143,6 @@ def figure8(*, ax: Axes | None = None, v_max: float = 5.0, n: int = 400) -> tupl
     return _figure_kharaz(ax, "steel", 8, v_max, n)
 
 
-figure7.__doc__ = _KHARAZ_DOC.format(no=7, a="an", flat="aluminium", table=3)
-figure8.__doc__ = _KHARAZ_DOC.format(no=8, a="a", flat="steel", table=4)
+# the figure's fields, then the shared paragraphs (``{{name}}`` in the template)
+figure7.__doc__ = fill(_KHARAZ_DOC.format(no=7, a="an", flat="aluminium", table=3), FIGURE_DOC)
+figure8.__doc__ = fill(_KHARAZ_DOC.format(no=8, a="a", flat="steel", table=4), FIGURE_DOC)

@@ -15,9 +15,10 @@ import math
 
 import numpy as np
 
-from .._validation import check_eps_y, check_nu, check_velocity
+from .._validation import check_nu, check_velocity
 from ..materials import poisson_factor
-from ._common import broadcast, check_impact, check_v_star, finite_out
+from .._doc import doc
+from ._common import MODEL_DOC, check_impact, finite_out, v_star_inputs
 
 __all__ = ["ceb_hardness_factor", "chang_ling", "chang_ling_dimensional"]
 
@@ -92,6 +93,7 @@ def _cl_e(s, r):
     return np.where(plastic, e, 1.0)
 
 
+@doc(MODEL_DOC)
 def chang_ling(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, critical: str = "ceb") -> float | NDArray[np.float64]:
     """Coefficient of restitution of Chang & Ling (1992) [CL]_, from the CEB model, JGM eq (1).
 
@@ -146,15 +148,7 @@ def chang_ling(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, critical:
     critical : {"ceb", "jgm"}, optional
         Critical interference of the CEB law: CEB's own (default) or JGM eq (4).
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
+    {returns_e}
     ValueError
         v1_star negative or not finite, eps_y <= 0, nu outside [0, 0.5), an unknown ``critical``, or shapes that do not broadcast (the message names the parameter).
 
@@ -168,14 +162,12 @@ def chang_ling(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike, *, critical:
     >>> chang_ling(0.5, 0.005, 0.3), round(chang_ling(10.0, 0.005, 0.3), 4)
     (1.0, 0.5761)
     """
-    v = check_v_star(v1_star)
-    eps = check_eps_y(eps_y)
-    nu = check_nu(nu)
-    v, eps, nu = broadcast((v, "v1_star"), (eps, "eps_y"), (nu, "nu"))
+    v, eps, nu = v_star_inputs(v1_star, eps_y=eps_y, nu=nu)
     r, s_per_v = _cl_params(nu, critical)
     return finite_out(_cl_e(v * s_per_v, r), ("v1_star", v))
 
 
+@doc(MODEL_DOC)
 def chang_ling_dimensional(impact: Impact, V1: ArrayLike, *, critical: str = "ceb") -> float | NDArray[np.float64]:
     """Chang & Ling (1992) e for an :class:`~fastrest.Impact` at speed V1 (m/s): JGM eq (1) in SI units.
 
@@ -197,15 +189,7 @@ def chang_ling_dimensional(impact: Impact, V1: ArrayLike, *, critical: str = "ce
     critical : {"ceb", "jgm"}, optional
         Critical interference, as in :func:`chang_ling`.
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        ``impact`` is not a :class:`fastrest.Impact`, or V1 is not real.
+    {returns_e_impact}
     ValueError
         V1 negative or not finite, an unknown ``critical``, or a result that overflows.
 

@@ -13,14 +13,26 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .._validation import EPS_Y_VALIDATED, ValidityWarning, check_eps_y, warn
-from ._common import broadcast, check_v_star, finite_out
+from .._validation import EPS_Y_VALIDATED, ValidityWarning, warn
+from .._doc import doc, paragraphs
+from ._common import MODEL_DOC, finite_out, v_star_inputs
 
 __all__ = ["JGM_FIT_V_MAX", "jgm_fit_jcg", "jgm_fit_etsion", "jgm_fit_jcg_kernel", "jgm_fit_jcg_array",
            "jgm_fit_etsion_kernel", "jgm_fit_jcg_scalar"]
 
 #: Upper end of the range of JGM's fit (44), V1* <= 1000.
 JGM_FIT_V_MAX = 1000.0
+
+# What the two fits raise and warn, written once (fastrest._doc).
+_DOC = {**MODEL_DOC, **paragraphs(returns_fit="""
+    {returns_e}
+    ValueError
+        v1_star negative or not finite, eps_y <= 0, or shapes that do not broadcast (the message names the parameter).
+
+    Warns
+    -----
+    ValidityWarning
+    """)}
 
 
 def _warn_fit(v, eps, check_v_max):
@@ -35,6 +47,7 @@ def _warn_fit(v, eps, check_v_max):
              + "; the formula is evaluated as printed", ValidityWarning)
 
 
+@doc(_DOC)
 def jgm_fit_jcg(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.float64]:
     """JGM's empirical fit to their model with JCG unloading (eq 35): eqs (42)-(44).
 
@@ -50,28 +63,9 @@ def jgm_fit_jcg(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.floa
     formula is still evaluated and a :class:`~fastrest.ValidityWarning` is issued. A Numba version
     is :func:`jgm_fit_jcg_kernel`.
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        V1 / V_c, V_c of JGM eq (28); finite and >= 0 (dimensionless).
-    eps_y : float or array_like
-        Sy / E' (dimensionless), > 0.
+    {params_v1_eps_y}
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
-    ValueError
-        v1_star negative or not finite, eps_y <= 0, or shapes that do not broadcast (the message names the parameter).
-
-    Warns
-    -----
-    ValidityWarning
+    {returns_fit}
         eps_y outside 0.0005-0.01 or v1_star > 1000 (:data:`JGM_FIT_V_MAX`): the formula as printed.
 
     Notes
@@ -84,9 +78,7 @@ def jgm_fit_jcg(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.floa
     >>> jgm_fit_jcg(0.5, 0.005), round(jgm_fit_jcg(10.0, 0.005), 4)
     (1.0, 0.8283)
     """
-    v = check_v_star(v1_star)
-    eps = check_eps_y(eps_y)
-    v, eps = broadcast((v, "v1_star"), (eps, "eps_y"))
+    v, eps = v_star_inputs(v1_star, eps_y=eps_y)
     _warn_fit(v, eps, True)
     low = np.where(v > 1.0, np.minimum(v, 60.0), 2.0)
     high = np.where(v > 60.0, v, 61.0)
@@ -96,6 +88,7 @@ def jgm_fit_jcg(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.floa
     return finite_out(e, ("v1_star", v), ("eps_y", eps))
 
 
+@doc(_DOC)
 def jgm_fit_etsion(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.float64]:
     """JGM's empirical fit to their model with Etsion et al. unloading (eq 33): eq (45).
 
@@ -104,28 +97,9 @@ def jgm_fit_etsion(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.f
     most, for 0.0005 < eps_y < 0.01, 0.2 < nu < 0.45 (no upper speed is stated; their computations
     end at omega_m* = 425). Outside that eps_y range a :class:`~fastrest.ValidityWarning` is issued.
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        V1 / V_c, V_c of JGM eq (28); finite and >= 0 (dimensionless).
-    eps_y : float or array_like
-        Sy / E' (dimensionless), > 0.
+    {params_v1_eps_y}
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
-    ValueError
-        v1_star negative or not finite, eps_y <= 0, or shapes that do not broadcast (the message names the parameter).
-
-    Warns
-    -----
-    ValidityWarning
+    {returns_fit}
         eps_y outside 0.0005-0.01: the formula as printed.
 
     Notes
@@ -135,12 +109,10 @@ def jgm_fit_etsion(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.f
     Examples
     --------
     >>> from fastrest.models import jgm_fit_etsion
-    >>> jgm_fit_etsion(0.5, 0.005), round(jgm_fit_etsion(10.0, 0.005), 4)
-    (1.0, 0.8312)
+    >>> jgm_fit_etsion([0.5, 10.0], 0.005).round(4)
+    array([1.    , 0.8312])
     """
-    v = check_v_star(v1_star)
-    eps = check_eps_y(eps_y)
-    v, eps = broadcast((v, "v1_star"), (eps, "eps_y"))
+    v, eps = v_star_inputs(v1_star, eps_y=eps_y)
     _warn_fit(v, eps, False)
     vs = np.where(v > 1.0, v, 2.0)
     e = 1.0 - 0.0361 * eps**-0.114 * np.log(vs) * (vs - 1.0) ** (9.5 * eps)
@@ -148,26 +120,18 @@ def jgm_fit_etsion(v1_star: ArrayLike, eps_y: ArrayLike) -> float | NDArray[np.f
 
 
 @jit
+@doc(MODEL_DOC)
 def jgm_fit_jcg_kernel(v1_star, eps_y):
     """JGM eqs (42)-(44) at one point, in Numba code: the kernel of :func:`jgm_fit_jcg`.
 
-    Parameters
-    ----------
-    v1_star : float
-        V1 / V_c, V_c of JGM eq (28) (dimensionless).
-    eps_y : float
-        Sy / E' (dimensionless).
+    {params_kernel}
 
-    Returns
-    -------
-    float
-        e (dimensionless); NaN unless v1_star is finite and >= 0 and eps_y finite and > 0
-        (no validation, no warnings).
+    {returns_kernel}
 
     Notes
     -----
-    Eqs (42)-(44) as in :func:`jgm_fit_jcg`. Called ``jgm_fit_jcg_scalar`` before (that name is an
-    alias); until then ``jgm_fit_jcg_kernel`` was the array loop, now :func:`jgm_fit_jcg_array`.
+    Eqs (42)-(44) as in :func:`jgm_fit_jcg`; ``jgm_fit_jcg_scalar`` is another name of this
+    function, and :func:`jgm_fit_jcg_array` its loop over arrays.
 
     Examples
     --------
@@ -185,7 +149,7 @@ def jgm_fit_jcg_kernel(v1_star, eps_y):
             - 0.11 * math.log(v1_star / 60.0) * (v1_star - 60.0) ** (2.36 * eps_y))
 
 
-#: The scalar kernel's name before the kernel/array naming convention (the same object).
+#: Another name of :func:`jgm_fit_jcg_kernel` (the same object).
 jgm_fit_jcg_scalar = jgm_fit_jcg_kernel
 
 
@@ -216,7 +180,7 @@ def jgm_fit_jcg_array(v1_star, eps_y, out):
     -----
     :func:`jgm_fit_jcg_kernel` per point: invalid points give NaN (no exception, no warning). The
     "closed-form fit" speed reference of the benchmarks; the validated NumPy path is
-    :func:`jgm_fit_jcg`. Called ``jgm_fit_jcg_kernel`` before the kernel/array naming convention.
+    :func:`jgm_fit_jcg`.
 
     Examples
     --------
@@ -242,31 +206,21 @@ def jgm_fit_jcg_array(v1_star, eps_y, out):
 
 
 @jit
+@doc(MODEL_DOC)
 def jgm_fit_etsion_kernel(v1_star, eps_y):
     """JGM eq (45) at one point, in Numba code: the kernel of :func:`jgm_fit_etsion`.
 
-    Parameters
-    ----------
-    v1_star : float
-        V1 / V_c, V_c of JGM eq (28) (dimensionless).
-    eps_y : float
-        Sy / E' (dimensionless).
-
-    Returns
-    -------
-    float
-        e (dimensionless); NaN unless v1_star is finite and >= 0 and eps_y finite and > 0
-        (no validation, no warnings).
-
-    Notes
-    -----
     e = 1 - 0.0361 eps_y^(-0.114) ln(V1*) (V1* - 1)^(9.5 eps_y) for V1* > 1, 1 below (eq 45).
+
+    {params_kernel}
+
+    {returns_kernel}
 
     Examples
     --------
     >>> from fastrest.models import jgm_fit_etsion_kernel
-    >>> jgm_fit_etsion_kernel(0.5, 0.005), round(jgm_fit_etsion_kernel(20.0, 0.005), 6)
-    (1.0, 0.772454)
+    >>> [round(jgm_fit_etsion_kernel(v, 0.005), 6) for v in (0.5, 20.0)]
+    [1.0, 0.772454]
     """
     if not (v1_star >= 0.0 and v1_star < math.inf and eps_y > 0.0 and eps_y < math.inf):
         return math.nan

@@ -10,7 +10,8 @@ import math
 import numpy as np
 
 from .._validation import broadcast_named, check_eps_y, check_nu, check_velocity
-from ._common import check_impact, check_v_star, finite_out
+from .._doc import doc
+from ._common import MODEL_DOC, check_impact, check_v_star, finite_out
 from .chang_ling1992 import chang_ling, chang_ling_dimensional
 from .jgm_fits import jgm_fit_etsion, jgm_fit_jcg
 from .thornton1997 import thornton
@@ -50,6 +51,7 @@ MODELS = {
 }
 
 
+@doc(MODEL_DOC)
 def evaluate(model_name: str, impact: Impact, V1: ArrayLike, *, rho: float | None = None) -> float | NDArray[np.float64]:
     """Coefficient of restitution of a comparison model for an impact at speed V1 (m/s).
 
@@ -78,15 +80,7 @@ def evaluate(model_name: str, impact: Impact, V1: ArrayLike, *, rho: float | Non
     rho : float, optional
         Density (kg/m^3) for Weir-Tallon only; default mass-equivalent (see above).
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        ``impact`` is not a :class:`fastrest.Impact`, or V1 is not real.
+    {returns_e_impact}
     ValueError
         An unknown ``model_name``, ``rho`` given for another model than Weir-Tallon, V1 negative or
         not finite, or what the model itself refuses (e.g. V1 = 0 for Weir-Tallon).

@@ -11,9 +11,8 @@ import math
 
 import numpy as np
 
-from .._validation import check_nu
 from ..materials import critical_velocity_ratios
-from ._common import broadcast, check_v_star, finite_out
+from ._common import finite_out, v_star_inputs
 
 __all__ = ["THORNTON_COEFFICIENT", "thornton"]
 
@@ -66,12 +65,10 @@ def thornton(v1_star: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     Examples
     --------
     >>> from fastrest.models import thornton
-    >>> thornton(0.1, 0.3), round(thornton(10.0, 0.3), 4)
-    (1.0, 0.4922)
+    >>> thornton([0.1, 10.0], 0.3).round(4)  # below the onset of yield, and above
+    array([1.    , 0.4922])
     """
-    v = check_v_star(v1_star)
-    nu = check_nu(nu)
-    v, nu = broadcast((v, "v1_star"), (nu, "nu"))
+    v, nu = v_star_inputs(v1_star, nu=nu)
     ratio = v * np.asarray(critical_velocity_ratios(nu)["thornton"])  # V1 / V_y,Th
     plastic = ratio > 1.0
     x = 1.0 / np.where(plastic, ratio, 1.0)

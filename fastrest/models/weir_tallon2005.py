@@ -12,9 +12,10 @@ import math
 
 import numpy as np
 
-from .._validation import broadcast_named, check_bool, check_eps_y, check_finite_positive, check_nu, check_velocity
+from .._validation import broadcast_named, check_bool, check_finite_positive, check_velocity
 from ..materials import poisson_factor
-from ._common import broadcast, check_v_star, finite_out, refuse_zero_speed
+from .._doc import doc
+from ._common import MODEL_DOC, finite_out, refuse_zero_speed, v_star_inputs
 
 __all__ = ["weir_tallon", "johnson", "weir_tallon_unit_velocity", "weir_tallon_normalised"]
 
@@ -29,6 +30,7 @@ def _radius_ratio(R1, R):
     return R1 / R
 
 
+@doc(MODEL_DOC)
 def weir_tallon(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, R1: float | None = None, R: float | None = None, *,
                 cap: bool = False) -> float | NDArray[np.float64]:
     """Coefficient of restitution of Weir & Tallon (2005) [WT]_, JGM eq (3), in SI units.
@@ -73,15 +75,7 @@ def weir_tallon(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, 
     cap : bool, optional
         If True return min(1, e) (documented cap); default False returns the formula.
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
+    {returns_e}
     ValueError
         V1 negative or not finite (V1 = 0 without ``cap``), Sy, E_eff, rho or a radius not finite and > 0, R1 given without R, or shapes that do not broadcast (the message names the parameter).
 
@@ -112,6 +106,7 @@ def weir_tallon(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, 
     return finite_out(e, ("V1", V1), ("Sy", Sy), ("E_eff", E_eff), ("rho", rho))
 
 
+@doc(MODEL_DOC)
 def johnson(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, *, cap: bool = False) -> float | NDArray[np.float64]:
     """Johnson's (1985) simplified fully-plastic impact model [J]_: JGM eq (3) with R1 = R.
 
@@ -134,15 +129,7 @@ def johnson(V1: ArrayLike, Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, *, c
     cap : bool, optional
         If True return min(1, e); default False.
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
+    {returns_e}
     ValueError
         V1 negative or not finite (V1 = 0 without ``cap``), Sy, E_eff or rho not finite and > 0, or shapes that do not broadcast (the message names the parameter).
 
@@ -209,6 +196,7 @@ def weir_tallon_unit_velocity(Sy: ArrayLike, E_eff: ArrayLike, rho: ArrayLike, R
     return finite_out(out, ("Sy", Sy), ("E_eff", E_eff), ("rho", rho))
 
 
+@doc(MODEL_DOC)
 def weir_tallon_normalised(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
     """JGM eq (3) with R1 = R (Johnson) in JGM's normalisation: e = 3.1 (40 pi)^(1/8) (pi C)^(-5/8) V1*^(-1/4).
 
@@ -229,15 +217,7 @@ def weir_tallon_normalised(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) 
     nu : float or array_like
         Poisson's ratio, 0 <= nu < 0.5 (dimensionless).
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
+    {returns_e}
     ValueError
         v1_star = 0, negative or not finite, eps_y <= 0, nu outside [0, 0.5), or shapes that do not broadcast (the message names the parameter).
 
@@ -251,10 +231,7 @@ def weir_tallon_normalised(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) 
     >>> round(weir_tallon_normalised(16.0, 0.005, 0.33), 4)
     1.0137
     """
-    v = check_v_star(v1_star)
-    eps = check_eps_y(eps_y)
-    nu = check_nu(nu)
-    v, eps, nu = broadcast((v, "v1_star"), (eps, "eps_y"), (nu, "nu"))
+    v, eps, nu = v_star_inputs(v1_star, eps_y=eps_y, nu=nu)
     refuse_zero_speed(v, "v1_star", "Weir & Tallon's eq (3)")
     C = np.asarray(poisson_factor(nu))
     e = 3.1 * (40.0 * math.pi) ** 0.125 * (math.pi * C) ** -0.625 * v**-0.25

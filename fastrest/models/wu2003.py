@@ -11,7 +11,8 @@ import numpy as np
 
 from .._validation import check_eps_y, check_nu
 from ..materials import critical_velocity_ratios
-from ._common import broadcast, check_v_star, finite_out, refuse_zero_speed
+from .._doc import doc
+from ._common import MODEL_DOC, broadcast, check_v_star, finite_out, refuse_zero_speed
 
 __all__ = ["wu", "wu_finite_plastic_velocity", "wu_branches"]
 
@@ -80,6 +81,7 @@ def wu_finite_plastic_velocity(eps_y: ArrayLike, nu: ArrayLike | None = None, *,
     return finite_out(out, ("eps_y", eps))
 
 
+@doc(MODEL_DOC)
 def wu(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike | None = None, *, scale: str = "jgm") -> float | NDArray[np.float64]:
     """Coefficient of restitution of Wu, Li & Thornton (2003) [Wu]_, JGM eqs (39)-(41).
 
@@ -101,27 +103,14 @@ def wu(v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike | None = None, *, sca
     v1_star (C/1.6)^(5/2) (JGM Table 2), which differs by -15 % .. +35 % in speed over
     0.2 <= nu <= 0.45 (2 % at nu = 0.3).
 
-    Parameters
-    ----------
-    v1_star : float or array_like
-        V1 / V_c, V_c of JGM eq (28); finite and >= 0 (dimensionless).
-    eps_y : float or array_like
-        Sy / E' (dimensionless), > 0.
+    {params_v1_eps_y}
     nu : float or array_like, optional
         Poisson's ratio, 0 <= nu < 0.5; required for ``scale="wu"``, ignored (but validated and
         broadcast) for ``scale="jgm"``.
     scale : {"jgm", "wu"}, optional
         Velocity unit of eqs (39)-(41): JGM's V_c (default) or Wu et al.'s V_y,Wu.
 
-    Returns
-    -------
-    float or ndarray
-        e (dimensionless).
-
-    Raises
-    ------
-    TypeError
-        An input is not real.
+    {returns_e}
     ValueError
         v1_star negative or not finite, eps_y <= 0, nu outside [0, 0.5), nu missing for ``scale='wu'``, an unknown ``scale``, or shapes that do not broadcast (the message names the parameter).
 

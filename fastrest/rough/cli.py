@@ -79,7 +79,7 @@ def _impacts_covered(surface, V, args):
     try:
         return surface.impact(V, args.M, args.unloading, extrapolate=args.extrapolate), []
     except ValueError as exc:
-        if V.size < 2:
+        if V.size < 2 or not np.all(np.isfinite(V) & (V > 0.0)):  # one speed, or bad input: as it is
             raise
         first = exc
     kept, refused = [], []

@@ -21,12 +21,22 @@ import math
 import numpy as np
 
 from .. import forward as fw
+from .._doc import paragraphs
 from .._jit import jit
 from .._validation import as_float_array, kernel_array
 from .._validation import OMEGA_STAR_SWITCH as W_SWITCH  # every loading law's Hertz switch (fastrest.loading)
 
 __all__ = ["OK", "NEEDS_TABLE", "FAILED", "MAX_ITER", "ONSET_BAND", "hertz_fp", "hertz_terms", "jg_terms",
            "summit_values", "energy_excess", "energy_parts"]
+
+#: The first parameter of the solvers of both surface models, written once (fastrest._doc).
+ROUGH_DOC = paragraphs(params_data="""
+    Parameters
+    ----------
+    data : fastrest.forward.ForwardData
+        Forward table of one summit (loading energy, force, unloading; its loading law, JG or
+        Ghaednia et al. with hardening, is every summit's).
+    """)
 
 #: Solver status codes: converged; a trial point lies beyond the forward table (grow it, or, at the
 #: model's end, the impact is outside the model); no convergence in MAX_ITER steps (a bug).

@@ -20,6 +20,7 @@ from collections import namedtuple
 import numpy as np
 
 from .. import forward as fw
+from .._doc import doc, paragraphs
 from .._jit import jit
 from .._validation import OMEGA_STAR_SWITCH as W_SWITCH  # every loading law's Hertz switch (fastrest.loading)
 from ..interpolation import cell_polynomial
@@ -39,6 +40,23 @@ TAIL_L = 45.0
 #: Gaussian heights: the density exp(-zs^2/2) underflows soon after zs = 37 (1e-298).
 ZS_UNDERFLOW = 36.0
 _INV_SQRT_2PI = 1.0 / math.sqrt(2.0 * math.pi)
+
+# The first parameter and the examples' first lines of the kernels below, written once
+# (fastrest._doc).
+_DOC = paragraphs(
+    param_g="""
+        Parameters
+        ----------
+        g : GWData
+            The surface's height statistics.
+        """,
+    examples="""
+        Examples
+        --------
+        >>> from fastrest.rough import expectations, heights
+        >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
+        """,
+)
 
 GWData = namedtuple("GWData", ["kind", "n_total", "rho_w", "zs_lo", "zs_hi", "inv_h", "pdf_rows"])
 GWData.__doc__ = """Numba-friendly statistical surface (built by :func:`fastrest.rough.heights.gw_data`).
@@ -63,13 +81,11 @@ def _pdf(g, zs):
 
 
 @jit
+@doc(_DOC)
 def zs_top_kernel(g, zs_d):
     """Upper end of the height integration (-, in units of sigma) for the flat at zs_d.
 
-    Parameters
-    ----------
-    g : GWData
-        The surface's height statistics.
+    {param_g}
     zs_d : float
         Position of the flat over sigma (-).
 
@@ -79,10 +95,7 @@ def zs_top_kernel(g, zs_d):
         Gaussian: sqrt(max(zs_d, 0)^2 + 2 TAIL_L), where the integrand has fallen by exp(-TAIL_L)
         (Greenwood-Williamson integrals, docs/rough.md section 4); a user pdf: its support's end.
 
-    Examples
-    --------
-    >>> from fastrest.rough import expectations, heights
-    >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
+    {examples}
     >>> expectations.zs_top_kernel(g, 0.0) == (2 * expectations.TAIL_L) ** 0.5
     True
     """
@@ -93,13 +106,11 @@ def zs_top_kernel(g, zs_d):
 
 
 @jit
+@doc(_DOC)
 def zs_covered_kernel(g, w_cap):
     """Lowest flat position whose integration range stays within w* <= w_cap.
 
-    Parameters
-    ----------
-    g : GWData
-        The surface's height statistics.
+    {param_g}
     w_cap : float
         Largest w* (-) served (a forward table's end, or the model's).
 
@@ -108,10 +119,7 @@ def zs_covered_kernel(g, w_cap):
     float
         zs_d (-) at which (zs_top_kernel(zs_d) - zs_d) rho_w = w_cap.
 
-    Examples
-    --------
-    >>> from fastrest.rough import expectations, heights
-    >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
+    {examples}
     >>> zs = expectations.zs_covered_kernel(g, 20.0)
     >>> abs((expectations.zs_top_kernel(g, zs) - zs) * g.rho_w - 20.0) < 1e-12
     True
@@ -163,8 +171,8 @@ def _node(g, zs_d, p, q, j):
 
 
 @jit(inline=True)
-def _expectations(term, law, g, zs_d, w_b):
-    """Per-summit expectations of the 4 values ``term(law, w, yielded)`` over the contacting
+def _expectations(term, data, g, zs_d, w_b):
+    """Per-summit expectations of the 4 values ``term(data, w, yielded)`` over the contacting
     heights up to w* = w_b (composite Gauss-Legendre; ``yielded``: the panel lies above w* = 1)."""
     w_a, w_top = _w_range(g, zs_d)
     w_b = min(w_top, w_b)
@@ -175,7 +183,7 @@ def _expectations(term, law, g, zs_d, w_b):
         q = _panel_end(p, w_b, hw)
         for j in range(GL_ORDER):
             w, wt = _node(g, zs_d, p, q, j)
-            v0, v1, v2, v3 = term(law, w, p >= 1.0)
+            v0, v1, v2, v3 = term(data, w, p >= 1.0)
             e0 += wt * v0
             e1 += wt * v1
             e2 += wt * v2
@@ -185,34 +193,32 @@ def _expectations(term, law, g, zs_d, w_b):
 
 
 @jit(inline=True)
-def _hertz_term(law, w, yielded):
-    """(F, P*, 0, 0) of a Hertzian summit (``law`` unused)."""
+def _hertz_term(data, w, yielded):
+    """(F, P*, 0, 0) of a Hertzian summit (``data`` unused)."""
     f, pf = hertz_fp(w)
     return f, pf, 0.0, 0.0
 
 
 @jit(inline=True)
-def _jg_term(law, w, yielded):
-    """(F, P*, 0, 0) under the table's loading law: F and the slope P* from the forward table ``law``."""
-    f, pf = fw.FP_table_forward(law, w)
+def _jg_term(data, w, yielded):
+    """(F, P*, 0, 0) under the table's loading law: F and the slope P* from the forward table ``data``."""
+    f, pf = fw.FP_table_forward(data, w)
     return f, pf, 0.0, 0.0
 
 
 @jit(inline=True)
-def _impact_term(law, w, yielded):
+def _impact_term(data, w, yielded):
     """(P*, L, 1, yielded) at the deepest approach (exact P*; JGM eqs 9, 14, 38)."""
-    _, pf, _, loss = summit_values(law, w, w - 1.0)
+    _, pf, _, loss = summit_values(data, w, w - 1.0)
     return pf, loss, 1.0, (1.0 if yielded else 0.0)
 
 
 @jit
+@doc(_DOC)
 def gw_hertz_sums_kernel(g, zs_d):
     """Per-summit expected loading energy and force with every summit Hertzian.
 
-    Parameters
-    ----------
-    g : GWData
-        The surface's height statistics.
+    {param_g}
     zs_d : float
         Position of the flat over sigma (-): d/sigma above the mean summit plane.
 
@@ -227,19 +233,16 @@ def gw_hertz_sums_kernel(g, zs_d):
     The Hertz estimate of every statistical impact; also the test of an impact too light for the
     Gaussian's resolution (the flat at zs_d = ZS_UNDERFLOW). Quadrature as the module docstring.
 
-    Examples
-    --------
-    >>> from fastrest.rough import expectations, heights
-    >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
+    {examples}
     >>> e_f, e_p = expectations.gw_hertz_sums_kernel(g, 0.0)
     >>> bool(e_f > e_p > 0.0)  # E[w^2.5] > E[w^1.5] over a half-normal w
     True
     """
-    e_f, e_p, _, _ = _expectations(_hertz_term, None, g, zs_d, np.inf)
-    return e_f, e_p
+    return _expectations(_hertz_term, None, g, zs_d, np.inf)[:2]  # (E[F], E[P*])
 
 
 @jit
+@doc(_DOC)
 def gw_jg_sums_kernel(data, g, zs_d, w_cap):
     """Per-summit expected loading energy and force under the loading law of ``data``.
 
@@ -261,10 +264,7 @@ def gw_jg_sums_kernel(data, g, zs_d, w_cap):
         E[F] (over U_c) and E[P*] (over P_c) (-), F (JGM eqs 19, 25) and the Newton slope P* from
         the forward table; times N for the surface.
 
-    Examples
-    --------
-    >>> from fastrest.rough import expectations, heights
-    >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
+    {examples}
     >>> from fastrest import forward
     >>> data = forward.forward_data(0.005, 0.3, w_max=40.0)
     >>> jg = expectations.gw_jg_sums_kernel(data, g, 1.0, 40.0)
@@ -272,11 +272,11 @@ def gw_jg_sums_kernel(data, g, zs_d, w_cap):
     >>> bool(abs(jg[0] / hz[0] - 1) < 0.05)  # mostly Hertzian at zs_d = 1, rho_w = 1
     True
     """
-    e_f, e_p, _, _ = _expectations(_jg_term, data, g, zs_d, w_cap)
-    return e_f, e_p
+    return _expectations(_jg_term, data, g, zs_d, w_cap)[:2]  # (E[F], E[P*])
 
 
 @jit
+@doc(_DOC)
 def gw_impact_sums_kernel(data, g, zs_d, w_cap):
     """Per-summit expectations at the deepest approach.
 
@@ -291,10 +291,7 @@ def gw_impact_sums_kernel(data, g, zs_d, w_cap):
         E[P*] (exact P*, JGM eqs 9, 14), E[L] (dissipated energy, eq 38 with the unloading model),
         P(contact), P(w* > 1) (-), and the w* at the top of the integration (-).
 
-    Examples
-    --------
-    >>> from fastrest.rough import expectations, heights
-    >>> g, _ = heights.gw_data(heights.GreenwoodWilliamson(eta=1e10, sigma=1e-8, A_n=1e-4), 1e-8)
+    {examples}
     >>> from fastrest import forward
     >>> data = forward.forward_data(0.005, 0.3, w_max=40.0)
     >>> e_p, e_l, p_c, p_y, w_top = expectations.gw_impact_sums_kernel(data, g, 0.0, 40.0)

@@ -28,7 +28,7 @@ R_i/R_ref with the reference the tallest summit (r = 1, h = 0). The reference's 
 the flat's position: summit i is at w_i = (h_i + x)/r_i with w_i - 1 = (h_i + (delta + (1 - r_i)))/r_i
 (:func:`summit_w`), its energy terms weigh r_i^3, its force r_i^2 (so the Newton slope is still
 (5/2) times the force sum); the table must reach the largest w_i (:func:`largest_w`), not x. With
-every r_i = 1 each of these operations is exact, so one radius gives the same bits as before.
+every r_i = 1 each of these operations is exact, so equal radii give the bits of ``R_a=``.
 
 Sums run in ``prange`` over fixed blocks of :data:`BLOCK` summits whose partial sums are added in
 block order: results do not depend on the number of threads.
@@ -43,9 +43,10 @@ import numpy as np
 from numba import prange, types
 from numba.extending import overload
 
+from .._doc import doc
 from .._jit import jit
 from .._threads import run_parallel
-from .common import (FAILED, MAX_ITER, NEEDS_TABLE, OK, ONSET_BAND, energy_excess, hertz_terms, jg_terms,
+from .common import (ROUGH_DOC, FAILED, MAX_ITER, NEEDS_TABLE, OK, ONSET_BAND, energy_excess, hertz_terms, jg_terms,
                      summit_values)
 
 __all__ = ["BLOCK", "hertz_estimate", "solve_impacts", "radius_ratios", "largest_w"]
@@ -104,8 +105,8 @@ def _one_radius_impl(r):
 
 
 @jit(inline=True)
-def _block_sums(row, law, summits, x, delta):
-    """Column sums of ``row(law, w, d, r_i, onset)`` (4 values) over the summits in contact,
+def _block_sums(row, data, summits, x, delta):
+    """Column sums of ``row(data, w, d, r_i, onset)`` (4 values) over the summits in contact,
     h_i + x > 0, at w* = w and w* - 1 = d (:func:`summit_w`), in fixed blocks added in block order.
 
     ``summits`` = (h, r, descending): r None for one radius; with ``descending`` the heights are
@@ -122,7 +123,7 @@ def _block_sums(row, law, summits, x, delta):
             if h[i] + x > 0.0:
                 r_i = _ratio(r, i)
                 w, d = summit_w(h[i], r_i, x, delta)
-                r0, r1, r2, r3 = row(law, w, d, r_i, onset)
+                r0, r1, r2, r3 = row(data, w, d, r_i, onset)
                 s0 += r0
                 s1 += r1
                 s2 += r2
@@ -147,24 +148,24 @@ def _energy_row(f, p, k, r):
 
 
 @jit(inline=True)
-def _hertz_row(law, w, d, r, onset):
-    """:func:`_energy_row` of a Hertzian summit (``law`` unused)."""
+def _hertz_row(data, w, d, r, onset):
+    """:func:`_energy_row` of a Hertzian summit (``data`` unused)."""
     f, p, k = hertz_terms(w, d, onset)
     return _energy_row(f, p, k, r)
 
 
 @jit(inline=True)
-def _jg_row(law, w, d, r, onset):
-    """:func:`_hertz_row` under the loading law of ``law``, the forward table."""
-    f, p, k = jg_terms(law, w, d, onset)
+def _jg_row(data, w, d, r, onset):
+    """:func:`_hertz_row` under the loading law of ``data``, the forward table."""
+    f, p, k = jg_terms(data, w, d, onset)
     return _energy_row(f, p, k, r)
 
 
 @jit(inline=True)
-def _impact_row(law, w, d, r, onset):
+def _impact_row(data, w, d, r, onset):
     """(P*, L, 1, yielded) of a summit at the deepest approach (exact P*, JGM eqs 9, 14, 38), P*
     and L in the reference summit's units."""
-    _, p, _, loss = summit_values(law, w, d)
+    _, p, _, loss = summit_values(data, w, d)
     return r * r * p, r * r * r * loss, 1.0, (1.0 if d > 0.0 else 0.0)
 
 
@@ -274,8 +275,8 @@ def _advance(st, s_terms, s_abs, p_sum, n_1, e_hi, e_lo):
 
 
 @jit(inline=True)
-def _approach(sums, law, summits, e_hi, e_lo, x0, d0, w_table, w_model):
-    """(status, x, delta) solving G = E with ``sums(law, summits, x, delta)`` (see :func:`_hertz_sums`).
+def _approach(sums, data, summits, e_hi, e_lo, x0, d0, w_table, w_model):
+    """(status, x, delta) solving G = E with ``sums(data, summits, x, delta)`` (see :func:`_hertz_sums`).
 
     Trial points that take a summit beyond ``w_table`` return NEEDS_TABLE with x asked for. Once
     the table reaches ``w_model`` (the model's end), trial points beyond it are moved to it, and
@@ -288,15 +289,15 @@ def _approach(sums, law, summits, e_hi, e_lo, x0, d0, w_table, w_model):
             if not (w_table >= w_model and st[_LO_X] < w_cap):
                 return NEEDS_TABLE, st[_X], st[_D]
             st[_X], st[_D] = w_cap, w_cap - 1.0
-        t = sums(law, summits, st[_X], st[_D])
+        t = sums(data, summits, st[_X], st[_D])
         if _advance(st, t[0], t[1], t[2], t[3], e_hi, e_lo):
             return (OK if st[_X] <= w_cap else NEEDS_TABLE), st[_X], st[_D]
     return FAILED, st[_X], st[_D]
 
 
 @jit(inline=True)
-def _hertz_law_sums(law, summits, x, delta):
-    """:func:`_hertz_sums` with the arguments of :func:`_jg_sums` (``law`` unused)."""
+def _hertz_law_sums(data, summits, x, delta):
+    """:func:`_hertz_sums` with the arguments of :func:`_jg_sums` (``data`` unused)."""
     return _hertz_sums(summits, x, delta)
 
 
@@ -418,16 +419,13 @@ def hertz_estimate(h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDAr
     return out[1].copy(), out[2].copy()
 
 
+@doc(ROUGH_DOC)
 def solve_impacts(data: Any, h: NDArray[np.float64], e_hi: NDArray[np.float64], e_lo: NDArray[np.float64],
                   x0: NDArray[np.float64], d0: NDArray[np.float64], w_model: float,
                   r: NDArray[np.float64] | None = None, descending: bool = False) -> NDArray[np.float64]:
     """Impacts on explicit summits under the loading law of the forward table ``data``.
 
-    Parameters
-    ----------
-    data : fastrest.forward.ForwardData
-        Forward table of one summit (loading energy, force, unloading; its loading law, JG or
-        Ghaednia et al. with hardening, is every summit's).
+    {params_data}
     h : ndarray
         Summit heights below the tallest over omega_c (-), <= 0.
     e_hi, e_lo : ndarray

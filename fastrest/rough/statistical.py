@@ -14,9 +14,10 @@ import math
 import numpy as np
 from numba import prange
 
+from .._doc import doc
 from .._jit import jit
 from .._threads import run_parallel
-from .common import FAILED, MAX_ITER, NEEDS_TABLE, OK
+from .common import ROUGH_DOC, FAILED, MAX_ITER, NEEDS_TABLE, OK
 from .expectations import (ZS_UNDERFLOW, gw_hertz_sums_kernel, gw_impact_sums_kernel, gw_jg_sums_kernel, zs_covered_kernel,
                            zs_top_kernel)
 
@@ -95,8 +96,8 @@ def _coverage(g, w_cap):
 
 
 @jit(inline=True)
-def _approach(sums, law, g, energy, zs0, w_cap, clamp):
-    """(status, zs_d, w* at the top) solving N E[F] = energy with ``sums(law, g, zs_d, w_cap)`` ->
+def _approach(sums, data, g, energy, zs0, w_cap, clamp):
+    """(status, zs_d, w* at the top) solving N E[F] = energy with ``sums(data, g, zs_d, w_cap)`` ->
     (E[F], E[P*]). Trial points whose heights reach past ``w_cap`` return NEEDS_TABLE, or with
     ``clamp`` (w_cap is the model's end) are moved to it: NEEDS_TABLE then means the solution is
     beyond it."""
@@ -107,7 +108,7 @@ def _approach(sums, law, g, energy, zs0, w_cap, clamp):
             if not (clamp and st[_HI] > zs_cov):
                 break
             st[_ZS] = zs_cov
-        e_f, e_p = sums(law, g, st[_ZS], w_cap)
+        e_f, e_p = sums(data, g, st[_ZS], w_cap)
         if _advance(st, g, e_f, e_p, energy):
             break
     else:
@@ -117,8 +118,8 @@ def _approach(sums, law, g, energy, zs0, w_cap, clamp):
 
 
 @jit(inline=True)
-def _hertz_sums(law, g, zs_d, w_cap):
-    """:func:`gw_hertz_sums_kernel` with the arguments of :func:`gw_jg_sums_kernel` (``law``, ``w_cap`` unused)."""
+def _hertz_sums(data, g, zs_d, w_cap):
+    """:func:`gw_hertz_sums_kernel` with the arguments of :func:`gw_jg_sums_kernel` (``data``, ``w_cap`` unused)."""
     return gw_hertz_sums_kernel(g, zs_d)
 
 
@@ -270,14 +271,11 @@ def hertz_estimate(g: Any, energy: NDArray[np.float64], w_cap: float) -> NDArray
     return out
 
 
+@doc(ROUGH_DOC)
 def solve_impacts(data: Any, g: Any, energy: NDArray[np.float64], zs0: NDArray[np.float64], w_model: float) -> NDArray[np.float64]:
     """Impacts on a statistical surface under the loading law of the forward table ``data``.
 
-    Parameters
-    ----------
-    data : fastrest.forward.ForwardData
-        Forward table of one summit (loading energy, force, unloading; its loading law, JG or
-        Ghaednia et al. with hardening, is every summit's).
+    {params_data}
     g : GWData
         The surface's height statistics.
     energy : ndarray

@@ -159,7 +159,19 @@ def surface_from_params(material: Material | None = None, R_a: Any = None, heigh
 
 def worker_threads() -> int | None:
     """Threads of the Dask worker running the calling task (its ``threads_per_worker``), or None
-    outside a Dask worker (or without ``distributed``)."""
+    outside a Dask worker (or without ``distributed``).
+
+    Returns
+    -------
+    int or None
+        The worker's thread count; :func:`sweep` runs each task's Numba kernels on that many.
+
+    Examples
+    --------
+    >>> from fastrest.rough.sweeps import worker_threads
+    >>> worker_threads() is None  # here, not in a Dask worker's task
+    True
+    """
     try:
         from distributed import get_worker
     except ImportError:
@@ -186,7 +198,8 @@ def _sweep_task(factory, params, array_keys, *args):
     threads = worker_threads()
     before = numba.get_num_threads()
     if threads is not None:  # numba's setting is per calling thread: this task's only
-        numba.set_num_threads(max(1, min(threads, numba.config.NUMBA_NUM_THREADS)))
+        most = int(getattr(numba.config, "NUMBA_NUM_THREADS"))  # numba.config's names are set at run time
+        numba.set_num_threads(max(1, min(threads, most)))
     try:
         surface = factory(**params)
         return surface.impact(V1, M, unloading, extrapolate=extrapolate)

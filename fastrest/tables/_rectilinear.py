@@ -13,7 +13,7 @@ import numpy as np
 from .._deprecation import keyword_only
 from .._placement import JUMP, place_rows, scaled_error as _err
 from .._provenance import provenance
-from .._validation import check_count, real_scalar
+from .._validation import check_count, check_tol
 from ..direct import impact_array
 from ..loading import JACKSON_GREEN
 from ..limits import speed_limit
@@ -54,11 +54,7 @@ def _eval(table, v, e, n):
 
 
 def _check_tol(tol):
-    tol = real_scalar(tol, "tol")
-    if not (TOL_MIN <= tol < 1.0):
-        raise ValueError(f"tol must be in [{TOL_MIN:g}, 1) (the grid's nodes come from a table accurate "
-                         f"to ~1e-9); got {tol!r}")
-    return tol
+    return check_tol(tol, TOL_MIN, "the grid's nodes come from a table accurate to ~1e-9")
 
 
 def _check_n_check(n_check, allow_zero=False):

@@ -37,12 +37,13 @@ import math
 import numpy as np
 
 from .._deprecation import keyword_only
+from .._doc import doc
 from .._validation import warn
 from ..energy import V_SWITCH
 from ..limits import speed_limit
 from .accuracy_search import (KNOWN_WORST, LATTICE_CELLS, LOCAL_ITERATIONS, LOCAL_MIN_STEP, LOCAL_STARTS,
                               SIGN_CHANGE_FLOOR, climb, in_domain, lattice_points, search_starts, worst_cells)
-from .accuracy_search import _error, _interpolated, _reference
+from .accuracy_search import SEARCH_DOC, _error, _interpolated, _reference
 from .grid import QUANTITIES, normalise_grid
 
 __all__ = ["AccuracyWarning", "DEFAULT_TOL", "SAFETY", "SIGN_CHANGE_FLOOR", "adversarial_points", "sample_points",
@@ -188,6 +189,7 @@ def _errors(table, v, e, n, ref, floored):
 
 
 @keyword_only("starts", "min_step", "max_iterations")
+@doc(SEARCH_DOC)
 def local_search(table: _Table, v: NDArray[np.float64], e: NDArray[np.float64], n: NDArray[np.float64], err: NDArray[np.float64], floored: Any, *,
                  starts: int = LOCAL_STARTS, min_step: float = LOCAL_MIN_STEP,
                  max_iterations: int = LOCAL_ITERATIONS) -> Any:
@@ -205,10 +207,7 @@ def local_search(table: _Table, v: NDArray[np.float64], e: NDArray[np.float64], 
     starts : int
         Distinct humps per quantity to start from (the worst point of each of its worst humps:
         :func:`~fastrest.tables.accuracy_search.search_starts`).
-    min_step : float
-        The search ends when its steps have shrunk to this fraction of the first.
-    max_iterations : int
-        At most this many rounds of the search.
+    {search_steps}
 
     Returns
     -------

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._deprecation import keyword_only
+from .._doc import doc, paragraphs
 from ..critical import c_of_nu
 from ..direct import impact_array
 from ..energy import V_SWITCH
@@ -41,6 +42,15 @@ _Table = Any
 
 __all__ = ["SIGN_CHANGE_FLOOR", "LOCAL_STARTS", "LOCAL_MIN_STEP", "LOCAL_ITERATIONS", "RIDGE_STARTS", "LATTICE_CELLS",
            "KNOWN_WORST", "lattice_points", "search_starts", "climb"]
+
+#: The options of the local search, written once (fastrest._doc; :func:`climb` and
+#: :func:`fastrest.tables.accuracy.local_search`).
+SEARCH_DOC = paragraphs(search_steps="""
+    min_step : float
+        The search ends when its steps have shrunk to this fraction of the first.
+    max_iterations : int
+        At most this many rounds of the search.
+    """)
 
 #: A sign-changing 1 - e^2 is measured relative to max(abs(1 - e^2), SIGN_CHANGE_FLOOR).
 SIGN_CHANGE_FLOOR = 0.1
@@ -289,6 +299,7 @@ def in_domain(table: _Table, pts: Any) -> list[tuple[float, float, float]]:
 
 
 @keyword_only("min_step", "max_iterations")
+@doc(SEARCH_DOC)
 def climb(table: _Table, starts: list[tuple[int, float, float, float, float]], floored: Any, *,
                  min_step: float = LOCAL_MIN_STEP,
                  max_iterations: int = LOCAL_ITERATIONS) -> tuple[NDArray[np.float64], ...]:
@@ -301,10 +312,7 @@ def climb(table: _Table, starts: list[tuple[int, float, float, float, float]], f
         (quantity, V1*, eps_y, nu, its error there) per start.
     floored : list of bool
         Per quantity: a sign-changing loss, measured relative to max(abs(x), 0.1).
-    min_step : float
-        The search ends when its steps have shrunk to this fraction of the first.
-    max_iterations : int
-        At most this many rounds of the search.
+    {search_steps}
 
     Returns
     -------

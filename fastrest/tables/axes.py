@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._doc import doc, paragraphs
 from .._validation import OMEGA_M_STAR_MAX
 from ..loading.jackson_green import W_SWITCH
 from ..energy import V_SWITCH
@@ -29,14 +30,20 @@ from .grid import normalise_grid  # noqa: F401 (used by the examples)
 __all__ = ["Block", "xi_range", "c_eps_y_of_xi", "nu_axis", "energy_eps_y_axis", "omega_axis", "cell_layout",
            "eps_y_blocks", "v1_star_top"]
 
-
-def xi_range(g: dict[str, Any]) -> tuple[float, float]:
-    """The range of the mapped material axis xi of a grid.
-
+# The parameter of the functions of one grid, written once (fastrest._doc).
+_DOC = paragraphs(param_grid="""
     Parameters
     ----------
     g : dict
         A normalised grid (:func:`normalise_grid`).
+    """)
+
+
+@doc(_DOC)
+def xi_range(g: dict[str, Any]) -> tuple[float, float]:
+    """The range of the mapped material axis xi of a grid.
+
+    {param_grid}
 
     Returns
     -------
@@ -87,13 +94,11 @@ def c_eps_y_of_xi(xi: ArrayLike, k: float) -> NDArray[np.float64]:
     return np.array([math.log1p(k * x) / k for x in xi.ravel()]).reshape(xi.shape)
 
 
+@doc(_DOC)
 def nu_axis(g: dict[str, Any]) -> NDArray[np.float64]:
     """The nu nodes (-) of a grid: ``n_nu`` uniform nodes from ``nu_min`` to ``nu_max``.
 
-    Parameters
-    ----------
-    g : dict
-        A normalised grid (:func:`normalise_grid`).
+    {param_grid}
 
     Examples
     --------
@@ -103,14 +108,12 @@ def nu_axis(g: dict[str, Any]) -> NDArray[np.float64]:
     return np.linspace(g["nu_min"], g["nu_max"], g["n_nu"])
 
 
+@doc(_DOC)
 def energy_eps_y_axis(g: dict[str, Any]) -> NDArray[np.float64]:
     """The plain eps_y nodes (-) of a grid's stored W* and ``v1_star_max``: ``n_eps_y_energy`` uniform
     nodes from ``eps_y_min`` to ``eps_y_max``.
 
-    Parameters
-    ----------
-    g : dict
-        A normalised grid (:func:`normalise_grid`).
+    {param_grid}
 
     Examples
     --------
@@ -120,16 +123,14 @@ def energy_eps_y_axis(g: dict[str, Any]) -> NDArray[np.float64]:
     return np.linspace(g["eps_y_min"], g["eps_y_max"], g["n_eps_y_energy"])
 
 
+@doc(_DOC)
 def v1_star_top(g: dict[str, Any]) -> float:
     """The largest V1* (-) a table of grid ``g`` holds.
 
     The largest w_m* = 425 speed (:func:`fastrest.limit`, JGM section 3.3) over the
     materials of the top block's nodes, clamped into the grid's eps_y range.
 
-    Parameters
-    ----------
-    g : dict
-        A normalised grid (:func:`normalise_grid`).
+    {param_grid}
 
     Examples
     --------

@@ -384,7 +384,7 @@ def check_target_dir(path: str | os.PathLike[str], name: str = "path",
     Returns
     -------
     str
-        ``path`` as a str.
+        ``path`` as a str: a directory, or one that can be created.
 
     Raises
     ------

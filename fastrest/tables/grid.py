@@ -50,9 +50,8 @@ OMEGA_GRID_HERTZ = 20
 #: Nodes of the W* grid on (1.9, 425] (geometric).
 OMEGA_GRID_JG = 236
 
-#: Default grid of the shipped table: what ``fastrest build --tol 1e-9`` reaches from the earlier
-#: grid (24/32/40/72 nodes in C(nu) eps_y, 6 in nu, fine cells up to V1* = 8) on the adversarial
-#: sample of fastrest.tables.error: the cells up to V1* = 128, 256, 512 carry 28, 32, 47 nodes in the
+#: Default grid of the shipped table, one that ``fastrest build --tol 1e-9`` reaches on the
+#: adversarial sample of fastrest.tables.error: the cells up to V1* = 128, 256, 512 carry 28, 32, 47 nodes in the
 #: mapped C(nu) eps_y and the top octaves 85 (the law's cos(pi a/R) term varies fastest near
 #: w* = 425), 8 nodes in nu, 2^4 cells per octave up to V1* = 16 (the Etsion and Brake 1 - e^2 near
 #: V1* = 8-16 and just above the switch). W* is stored on its own plain-eps_y grid (n_eps_y_energy).

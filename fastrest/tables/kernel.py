@@ -81,10 +81,8 @@ def table_value_kernel(tab, q, v, eps_y, nu):
         the unloading model with that code (JCG 0, Etsion 1, Brake 2).
     v : float
         V1* = V1/V_c (-), JGM eq (30).
-    eps_y : float
-        Sy/E' (-).
-    nu : float
-        Poisson's ratio (-).
+    eps_y, nu : float
+        The material: Sy/E' (-) and Poisson's ratio (-).
 
     Returns
     -------
@@ -296,14 +294,12 @@ def stencil_coefficients(typingctx, coef, first, row, we, wn):
 def interpolant_array(tab, q, v, eps_y, nu, out):
     """out[k]: quantity q at (v[k], eps_y[k], nu[k]) without the w_m* <= 425 check (documented internal).
 
+    For measuring the interpolant's error right at the limit (:mod:`fastrest.tables.error`).
+
     Parameters
     ----------
     tab, q, v, eps_y, nu, out
         As :func:`table_array`.
-
-    Notes
-    -----
-    For measuring the interpolant's error right at the limit (:mod:`fastrest.tables.error`).
 
     Examples
     --------
@@ -366,10 +362,11 @@ def table_array_parallel(tab, q, v, eps_y, nu, out):
     Examples
     --------
     >>> import numpy as np, fastrest
-    >>> out = np.empty(1)
-    >>> table_array_parallel(fastrest.load_table().data, 1, np.array([5.0]), np.array([0.005]), np.array([0.33]), out)
-    >>> round(float(out[0]), 6)
-    0.898078
+    >>> tab, v, e, n = fastrest.load_table().data, np.array([5.0, 10.0]), np.full(2, 0.005), np.full(2, 0.33)
+    >>> out, ref = np.empty(2), np.empty(2)
+    >>> table_array_parallel(tab, 1, v, e, n, out); table_array(tab, 1, v, e, n, ref)
+    >>> bool((out == ref).all()), round(float(out[0]), 6)  # the same numbers
+    (True, 0.898078)
     """
     for k in nb.prange(v.size):
         out[k] = table_value_kernel(tab, q, v[k], eps_y[k], nu[k])

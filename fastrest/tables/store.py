@@ -6,7 +6,7 @@ from typing import Any
 import os
 from pathlib import Path
 
-from .._validation import real_scalar, warn
+from .._validation import check_tol, warn
 from .._deprecation import keyword_only
 from . import error
 from .accuracy import warn_if_inaccurate
@@ -95,10 +95,7 @@ def cache_dir() -> Path:
 
 
 def _check_tol(tol):
-    tol = real_scalar(tol, "tol")
-    if not (1e-14 <= tol < 1.0):
-        raise ValueError(f"tol (relative error asked of the table) must be in [1e-14, 1); got {tol!r}")
-    return tol
+    return check_tol(tol, 1e-14, "the relative error asked of the table")
 
 
 def read(path: str | os.PathLike[str]) -> Table:
@@ -112,6 +109,7 @@ def read(path: str | os.PathLike[str]) -> Table:
     Returns
     -------
     Table
+        A new table, read from the file at each call.
 
     Raises
     ------
@@ -193,6 +191,8 @@ def load_table(path: str | os.PathLike[str] | None = None, *, tol: float | None 
     Returns
     -------
     Table
+        The process's one table of that file: the same object for every call while the file is
+        unchanged.
 
     Raises
     ------

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any, NoReturn, overload
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import numba as nb
 import numpy as np
@@ -10,12 +10,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import unloading as _unloading
 from .._deprecation import keyword_only, warn_deprecated
+from .._doc import doc, fill, paragraphs
 from .._jit import compiled_entry
 from .._threads import run_parallel
 from .._validation import (EPS_Y_VALIDATED, NU_VALIDATED, OMEGA_M_STAR_MAX, broadcast_inputs, check_eps_y,
                            check_nu, check_velocity, shaped, warn_if_outside_validated)
 from ..limits import raise_out_of_range, speed_limit
-from ..fastpath import fast_scalar
+from ..fastpath import fast_scalar, table_omega, table_quantity
 from .accuracy import measure
 from .data import table_data
 from ._rectilinear import _check_n_check, _check_tol, dataset
@@ -33,6 +34,27 @@ __all__ = ["Table", "PARALLEL_MIN_POINTS"]
 PARALLEL_MIN_POINTS = 20000
 _EPS_LO, _EPS_HI = EPS_Y_VALIDATED
 _NU_LO, _NU_HI = NU_VALIDATED
+
+#: The Warns section of every evaluation of a table (and of the default table's functions) and
+#: the parameters of its energies, written once (fastrest._doc).
+TABLE_DOC = paragraphs(
+    warns_table="""
+        Warns
+        -----
+        ValidityWarning
+            Only for tables wider than the paper's validated range, at points outside it.
+        """,
+    params_energy="""
+        Parameters
+        ----------
+        w : float or array_like
+            Normalised interference w* = omega/omega_c (-), 0 <= w* <= 425.
+        eps_y : float or array_like
+            Sy/E' (-), JGM eq (11); within the table's range.
+        nu : float or array_like
+            Poisson's ratio (-); within the table's range.
+        """,
+)
 
 _QUANTITY_PARAMS = """
         Parameters
@@ -57,10 +79,7 @@ _QUANTITY_PARAMS = """
             v1_star negative or NaN; eps_y or nu outside the table (the message gives its range);
             V1* past the model's limit w_m* = 425 (JGM section 3.3) or a/R = 1{raises}.
 
-        Warns
-        -----
-        ValidityWarning
-            Only for tables wider than the paper's validated range, at points outside it.
+        {{warns_table}}
 
         Notes
         -----
@@ -73,6 +92,12 @@ _QUANTITY_PARAMS = """
         >>> t = fastrest.load_table()
         >>> {example}
         """
+def _quantity_doc(summary, **fields):
+    """The docstring of a quantity method: ``summary``, then :data:`_QUANTITY_PARAMS` formatted with
+    ``fields``, its shared paragraphs (``{{name}}`` there) filled from :data:`TABLE_DOC`."""
+    return summary + "\n" + fill(_QUANTITY_PARAMS.format(**fields), TABLE_DOC)
+
+
 _DEPRECATED_DOC = """Deprecated name of :meth:`{new}` (the name :class:`~fastrest.Curve` and
         :class:`~fastrest.Scene` use); warns :class:`DeprecationWarning`.
 
@@ -246,42 +271,29 @@ class Table:
             self._codes[unloading] = code
         return code
 
-    @overload
-    def omega_m(self, v1_star: float, eps_y: float, nu: float) -> float: ...
-    @overload
-    def omega_m(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]: ...
-
+    # a float in gives a float out (fastrest.fastpath.TableOmega, TableQuantity)
+    @table_omega
     def omega_m(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         return self._scalar(0, v1_star, eps_y, nu)
 
-    @overload
-    def e(self, v1_star: float, eps_y: float, nu: float, unloading: str = "jcg") -> float: ...
-    @overload
-    def e(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
-          unloading: str = "jcg") -> float | NDArray[np.float64]: ...
-
+    @table_quantity
     def e(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
           unloading: str = "jcg") -> float | NDArray[np.float64]:
         return self._scalar(1 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
-    @overload
-    def loss(self, v1_star: float, eps_y: float, nu: float, unloading: str = "jcg") -> float: ...
-    @overload
-    def loss(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
-             unloading: str = "jcg") -> float | NDArray[np.float64]: ...
-
+    @table_quantity
     def loss(self, v1_star: ArrayLike, eps_y: ArrayLike, nu: ArrayLike,
              unloading: str = "jcg") -> float | NDArray[np.float64]:
         return self._scalar(2 + 2 * self._model_code(unloading), v1_star, eps_y, nu)
 
-    omega_m.__doc__ = "Maximum interference w_m* = omega_m/omega_c (-), JGM eq (29).\n" + _QUANTITY_PARAMS.format(
+    omega_m.__doc__ = _quantity_doc("Maximum interference w_m* = omega_m/omega_c (-), JGM eq (29).",
         extra="", returns="w_m* (-)", raises="", notes="w_m* solves F(w_m*) = V1*^2 (JGM eq 29).",
         example="round(t.omega_m(5.0, 0.005, 0.33), 6)\n        3.673079")
-    e.__doc__ = "Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38).\n" + _QUANTITY_PARAMS.format(
+    e.__doc__ = _quantity_doc("Coefficient of restitution e = V2/V1 (-), JGM eqs (16), (38).",
         extra=_UNLOADING, returns="e (-)", raises="; an unknown unloading model, or one the table does not hold",
         notes="e from w_m* and the unloading model's residual interference (JGM eq 38).",
         example='round(t.e(5.0, 0.005, 0.33, "etsion"), 6)\n        0.925853')
-    loss.__doc__ = "Dissipated fraction of the impact energy 1 - e^2 (-).\n" + _QUANTITY_PARAMS.format(
+    loss.__doc__ = _quantity_doc("Dissipated fraction of the impact energy 1 - e^2 (-).",
         extra=_UNLOADING, returns="1 - e^2 (-)", raises="; an unknown unloading model, or one the table does not hold",
         notes="1 - e^2 tabulated as such (accurate where e is close to 1).",
         example="round(t.loss(5.0, 0.005, 0.33), 6)\n        0.193456")
@@ -305,6 +317,7 @@ class Table:
     e_star.__doc__ = _DEPRECATED_DOC.format(old="e_star", new="e")
     loss_star.__doc__ = _DEPRECATED_DOC.format(old="loss_star", new="loss")
 
+    @doc(TABLE_DOC)
     def loading_energy(self, w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         """Loading energy F(w*) = 1 - (W_ep)*(w*) to interference w* over U_c (-), from the table.
 
@@ -312,14 +325,7 @@ class Table:
         the critical energy (JGM eq 24). The same quantity as :func:`fastrest.loading_energy`
         (exact quadrature, one material at a time), interpolated from the table's stored W*.
 
-        Parameters
-        ----------
-        w : float or array_like
-            Normalised interference w* = omega/omega_c (-), 0 <= w* <= 425.
-        eps_y : float or array_like
-            Sy/E' (-), JGM eq (11); within the table's range.
-        nu : float or array_like
-            Poisson's ratio (-); within the table's range.
+        {params_energy}
 
         Returns
         -------
@@ -335,10 +341,7 @@ class Table:
             w past (or, for interpolation, too close to) the end of the law, a/R = 1, which only
             tables past eps_y = 0.0102 reach.
 
-        Warns
-        -----
-        ValidityWarning
-            Only for tables wider than the paper's validated range, at points outside it.
+        {warns_table}
 
         Notes
         -----
@@ -364,6 +367,7 @@ class Table:
         warn_if_outside_validated(e, n)
         return shaped(out, shape)
 
+    @doc(TABLE_DOC)
     def W_star(self, w: ArrayLike, eps_y: ArrayLike, nu: ArrayLike) -> float | NDArray[np.float64]:
         """Normalised elasto-plastic loading energy (W_ep)* = 1 - F(w*) (-), JGM eq (25), from the table.
 
@@ -371,14 +375,7 @@ class Table:
         :func:`fastrest.W_star` (exact quadrature), interpolated from the table's stored W*; see
         :meth:`loading_energy` for the parameters, errors and method.
 
-        Parameters
-        ----------
-        w : float or array_like
-            Normalised interference w* = omega/omega_c (-), 0 <= w* <= 425.
-        eps_y : float or array_like
-            Sy/E' (-); within the table's range.
-        nu : float or array_like
-            Poisson's ratio (-); within the table's range.
+        {params_energy}
 
         Returns
         -------
@@ -392,10 +389,7 @@ class Table:
         ValueError
             As :meth:`loading_energy`, naming the parameter.
 
-        Warns
-        -----
-        ValidityWarning
-            Only for tables wider than the paper's validated range, at points outside it.
+        {warns_table}
 
         Notes
         -----

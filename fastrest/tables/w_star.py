@@ -124,7 +124,7 @@ def loading_energy_kernel(tab, w, eps_y, nu):
     Parameters
     ----------
     tab : EnergyData
-        ``table.energy``.
+        The stored W* of a table, ``table.energy``.
     w : float
         Normalised interference w* = omega/omega_c (-).
     eps_y : float

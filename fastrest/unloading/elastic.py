@@ -252,8 +252,8 @@ def area_restitution(f, wm, p_max, area):
     Examples
     --------
     >>> from fastrest.unloading import elastic
-    >>> e2, loss, w_res, delta, r = elastic.area_restitution(100.0, 6.55, 15.0, 8.0)
-    >>> round(e2, 6), round(loss, 6)
+    >>> out = elastic.area_restitution(100.0, 6.55, 15.0, 8.0)  # (e^2, 1 - e^2, w_res*, delta, R_res/R)
+    >>> round(out[0], 6), round(out[1], 6)
     (0.795495, 0.204505)
     """
     if wm <= W_SWITCH:
