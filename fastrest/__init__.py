@@ -36,6 +36,7 @@ from ._deprecation import alias as _alias, module_getattr as _module_getattr
 from ._validation import ValidityWarning, ExtrapolationWarning
 from .materials import Material, poisson_factor, critical_velocity_ratios
 from .impact import Impact
+from .repeated import RepeatedImpacts
 from .contact import P_star, A_star, omega_star_limit
 from .energy import W_star, loading_energy
 from .limits import Limit, limit
@@ -47,7 +48,7 @@ from .tables import TableFileError
 from . import tables
 from .force_law import ContactLaw, contact_law
 
-__all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact",
+__all__ = ["__version__", "ValidityWarning", "ExtrapolationWarning", "Material", "Impact", "RepeatedImpacts",
            "poisson_factor", "critical_velocity_ratios", "P_star", "A_star", "W_star",
            "loading_energy", "omega_star_limit", "Limit", "limit", "direct", "Curve", "curve", "Scene", "scene", "Table", "load_table",
            "omega_m_star", "e_star", "loss_star", "TableFileError", "ContactLaw", "contact_law"]

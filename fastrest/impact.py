@@ -34,6 +34,7 @@ from .critical import (critical_area, critical_energy, critical_force, critical_
 from .limits import raise_out_of_range, speed_limit
 from .loading import LAWS, LoadingLaw, resolve as resolve_loading
 from .materials import UNITS_HINT, Material, implausible, poisson_factor
+from .repeated import RepeatedImpacts, repeated_impacts
 
 __all__ = ["Impact"]
 
@@ -634,6 +635,51 @@ class Impact:
         out = self.e(V1, unloading=unloading, extrapolate=extrapolate)  # validates V1
         out = out * as_float_array(V1, "V1")
         return float(out) if np.ndim(out) == 0 else out
+
+    def repeated_impacts(self, V1: ArrayLike, n: int | None = None, unloading: str = "jcg", *,
+                         extrapolate: bool = False) -> RepeatedImpacts:
+        """Successive impacts on the same spot: e, largest and residual interference of each.
+
+        Exact (the energy balance on the reloading curve, docs/model.md "Repeated impacts"): an impact
+        reloads along the last unloading curve (elastic, e = 1 while it stays there) and goes on
+        along the virgin law past the earlier maximum; one exact solve per impact.
+
+        Parameters
+        ----------
+        V1 : float or array_like
+            Impact speed (m/s), > 0: one speed repeated ``n`` times, or a 1-D sequence (one per
+            impact).
+        n : int, optional
+            Number of impacts at the one speed (1 to 1e6).
+        unloading : {"jcg", "etsion", "brake"}
+            Unloading model (as in :meth:`e`).
+        extrapolate : bool
+            As in :meth:`e`.
+
+        Returns
+        -------
+        RepeatedImpacts
+            ``.e``, ``.max_interference`` (m), ``.residual_interference`` (m), ``.plastic`` per
+            impact; ``.shakedown(e_min)`` the first impact with e >= e_min.
+
+        Raises
+        ------
+        TypeError
+            Non-numbers; ``n`` not a whole number.
+        ValueError
+            A speed not finite and > 0; ``n`` missing for one speed, given with a sequence, or
+            outside 1 to 1e6; a sequence that is not 1-D or empty; an impact that takes the
+            contact past the model's end (the message names the impact).
+
+        Examples
+        --------
+        >>> import fastrest
+        >>> steel = fastrest.Material(200e9, 0.3, 1e9, rho=7850.0)
+        >>> r = fastrest.Impact(steel, 0.01).repeated_impacts(0.5, 3)
+        >>> r.e.round(4), r.plastic
+        (array([0.7989, 0.9108, 0.9572]), array([ True,  True,  True]))
+        """
+        return repeated_impacts(self, V1, n, unloading, extrapolate=extrapolate)
 
     @doc(_DOC)
     def contact_law(self, unloading: str = "jcg", *, extrapolate: bool = False) -> ContactLaw:

@@ -30,7 +30,7 @@ LAYERS = [
     ("solver", ["fastrest.direct"]),
     ("curves, tables, impact, force", ["fastrest.cells", "fastrest._placement", "fastrest.curve_data",
                                        "fastrest.curve", "fastrest.scene", "fastrest.tables", "fastrest.tables.*",
-                                       "fastrest.impact", "fastrest.forward", "fastrest.law_cells",
+                                       "fastrest.repeated", "fastrest.impact", "fastrest.forward", "fastrest.law_cells",
                                        "fastrest.force_law"]),
 ]
 TOP = len(LAYERS)
