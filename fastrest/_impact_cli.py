@@ -25,6 +25,18 @@ _SPHERE2 = {"E": "--sphere2-E", "nu": "--sphere2-nu", "Sy": "--sphere2-Sy", "rho
 _SPHERE2_KEYS = ("E", "nu", "Sy", "Et", "R", "rho", "mass")
 
 
+def _body_options(body: str, options: dict[str, str]) -> dict[str, str]:
+    """``body.E`` -> its option, and so on: the names Impact's messages give a body's values."""
+    return {f"{body}.{k}": v for k, v in options.items()}
+
+
+#: What Impact's messages call the bodies' values, as fastrest e's options.
+_IMPACT_NAMES = {**_body_options("sphere", _SPHERE), **_body_options("flat", _FLAT),
+                 **_body_options("sphere1", _SPHERE), **_body_options("sphere2", _SPHERE2),
+                 "R1": "--R", "R2": "--sphere2-R", "mass1": "--mass", "mass2": "--sphere2-mass", "R": "--R",
+                 "mass": "--mass"}
+
+
 def models_text() -> str:
     """'the three unloading models JCG, Etsion and Brake', from the registry (fastrest.unloading):
     the help texts cannot go stale when a model is added."""
@@ -57,19 +69,24 @@ def _model_names(values):
 
 
 def _material(names, E, nu, Sy, rho=None, Et=None):
-    """A :class:`fastrest.Material` whose errors name the body's options ``names``."""
-    from .export.cli import cli_names
+    """A :class:`fastrest.Material` whose errors and warnings name the body's options ``names``."""
+    from .export.cli import cli_names, cli_warnings
     from .materials import Material
 
-    with cli_names(names, out=None):
+    with cli_warnings(names), cli_names(names, out=None):
         return Material(E, nu, Sy if Sy is not None else math.inf, rho=rho, Et=Et if Et is not None else 0.0)
 
 
 def _impact(args):
     """The :class:`fastrest.Impact` of ``fastrest e``'s options."""
-    from .export.cli import cli_names
+    from .export.cli import cli_names, cli_warnings
     from .impact import Impact
 
+    with cli_warnings(_IMPACT_NAMES):
+        return _impact_of(args, cli_names, Impact)
+
+
+def _impact_of(args, cli_names, Impact):
     s2 = {k: getattr(args, "sphere2_" + k) for k in _SPHERE2_KEYS}
     two = any(v is not None for v in s2.values())
     flat_given = [o for k, o in _FLAT.items() if getattr(args, "flat_" + k) is not None]

@@ -40,6 +40,19 @@ def test_a_warning_is_one_line_under_the_command_prefix(capsys):
     assert "ValidityWarning" not in err and ".py:" not in err and "sys.exit" not in err
 
 
+def test_unit_slip_warnings_name_the_options_not_objects(capsys):
+    """A modulus in GPa on the command line: the warnings name --E (and --flat-E for the flat), not
+    the Material or Impact (or its sphere.E) the user never made; the units hint stays as it is."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        code, out, err = run(["e", "--E", "200", "--nu", "0.3", "--Sy", "1e9", "--R", "0.01", "--rho", "7800",
+                              "--flat-E", "70", "--flat-nu", "0.3", "--V", "1e-9"], capsys)
+    assert code == 0, err
+    assert "--E = 200.0 Pa is below" in err and "--flat-E = 70.0 Pa is below" in err, err
+    assert "Material:" not in err and "Impact:" not in err and "sphere.E" not in err and "flat.E" not in err, err
+    assert "check the units: E and Sy in Pa" in err
+
+
 def test_the_warning_format_is_restored_after_main(capsys):
     before = warnings.showwarning
     run(["e"] + STEEL + ["--V", "1"], capsys)

@@ -290,6 +290,20 @@ def test_cli_keeps_the_speeds_the_model_covers(tmp_path, capsys):
     assert cli.main(["rough", path, *head, "--V", "1e4", "--detrend", "none"]) == 2  # none covered
 
 
+def test_cli_unit_slip_warnings_name_the_options(tmp_path, capsys):
+    """--E in GPa: the warnings name --E, not the Material, Impact or sphere.E of the summits."""
+    import warnings
+    z, dx, dy = caps_map(CAPS)
+    path = str(write_x3p(tmp_path, z, dx, dy))
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        cli.main(["rough", path, "--E", "200", "--nu", "0.3", "--Sy", "1e9", "--M", "1e-9", "--V", "1e-6",
+                  "--detrend", "none"])
+    err = capsys.readouterr().err
+    assert "fastrest rough: warning: --E = 200.0 Pa is below" in err, err
+    assert "Material:" not in err and "Impact:" not in err and "sphere.E" not in err, err
+
+
 def test_without_surfacetopography(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "SurfaceTopography", None)
     with pytest.raises(ImportError, match=r'pip install "fastrest\[topography\]"'):

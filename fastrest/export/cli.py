@@ -12,10 +12,11 @@ import contextlib
 import re
 import shlex
 import time
+import warnings
 
 from ..unloading import MODELS
 
-__all__ = ["add_parser", "cli_names"]
+__all__ = ["add_parser", "cli_names", "cli_warnings"]
 
 _PAIR_OPTIONS = {k: "--" + k.replace("_", "-") for k in
                  ("E", "nu", "Sy", "R", "rho", "mass", "Et", "flat_E", "flat_nu", "flat_Sy", "flat_Et")}
@@ -50,14 +51,36 @@ def cli_names(names: dict[str, str], out: str | None = "--out") -> Iterator[None
             raise
         raise OSError(exc.errno, f"{out}: {exc.strerror}") from None
     except (TypeError, ValueError) as exc:
-        msg = str(exc)
-        for name, option in names.items():
-            after = r"\s+(?:=|must\b)" if name in ("path", "out") else \
-                r"(?:\s+(?:=|must\b|is\b|needs?\b|and\b|or\b|\()|\s*$|:)"
-            msg = re.sub(rf"(?<![\w\-'.\[]){re.escape(name)}(?={after})", option, msg)
+        msg = _as_options(str(exc), names)
         if msg == str(exc):
             raise
         raise type(exc)(msg) from None
+
+
+def _as_options(msg: str, names: dict[str, str]) -> str:
+    """``msg`` with the parameters of ``names`` written as options (the rule of :func:`cli_names`)."""
+    for name, option in names.items():
+        after = r"\s+(?:=|must\b)" if name in ("path", "out") else \
+            r"(?:\s+(?:=|must\b|is\b|needs?\b|and\b|or\b|\()|\s*$|:)"
+        msg = re.sub(rf"(?<![\w\-'.\[]){re.escape(name)}(?={after})", option, msg)
+    return msg
+
+
+@contextlib.contextmanager
+def cli_warnings(names: dict[str, str], objects: tuple[str, ...] = ("Material: ", "Impact: ")) -> Iterator[None]:
+    """Warnings raised inside, issued again (same category) with the Python parameters of ``names``
+    written as the command's options (as :func:`cli_names`) and without a leading ``objects``
+    prefix: a command-line user never made the Material or Impact the message would name."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        yield
+    for w in caught:
+        # the units hint ("check the units: E and Sy in Pa ...") speaks of quantities, not options
+        head, hint, tail = str(w.message).partition("; check the units")
+        msg = _as_options(head, names) + hint + tail
+        for prefix in objects:
+            msg = msg.removeprefix(prefix)
+        warnings.warn_explicit(msg, w.category, w.filename, w.lineno)
 
 
 def _cmd_law(args):

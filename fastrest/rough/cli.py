@@ -20,12 +20,13 @@ _READING = {"cutoff": "--cutoff", "detrend": "--detrend", "unit": "--unit", "phy
 
 def _cmd_rough(args: argparse.Namespace) -> int:
     from .._impact_cli import _material
-    from ..export.cli import cli_names
+    from ..export.cli import cli_names, cli_warnings
     from .summits import from_topography
 
     material = _material(_MATERIAL, args.E, args.nu, args.Sy, None, args.Et)
     try:
-        with cli_names(_READING, out=None):
+        # the summits are spheres of the surface's material: Impact's "sphere.E" is --E
+        with cli_names(_READING, out=None), cli_warnings({f"sphere.{k}": v for k, v in _MATERIAL.items()}):
             surface = from_topography(args.file, material, detrend=args.detrend, cutoff=args.cutoff,
                                       unit=args.unit, physical_size=args.physical_size,
                                       periodic=True if args.periodic else None)
