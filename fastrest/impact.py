@@ -573,15 +573,21 @@ class Impact:
         return self.max_interference(V1, extrapolate=extrapolate)
 
     @overload
-    def e(self, V1: float, unloading: str = "jcg", *, extrapolate: bool = False) -> float: ...
+    def e(self, V1: float, unloading: str = "jcg", *, extrapolate: bool = False, past_end: str = "raise") -> float: ...
     @overload
-    def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]: ...
+    def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False,
+          past_end: str = "raise") -> float | NDArray[np.float64]: ...
 
     @doc(_DOC)
-    def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:
+    def e(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False,
+          past_end: str = "raise") -> float | NDArray[np.float64]:
         """Coefficient of restitution e = V2 / V1 (-), JGM eqs (16), (38).
 
         {params_V1_unloading}
+        past_end : {"raise", "nan"}, optional
+            A speed past the model's end (:meth:`V_max`): "raise" (default) refuses the call with
+            a ValueError naming it; "nan" gives NaN there, the other speeds their e, with one
+            RuntimeWarning naming the first refused speed and the end.
 
         Returns
         -------
@@ -607,9 +613,36 @@ class Impact:
         >>> steel = fastrest.Material(200e9, 0.32, 1.0e9, 7850.0)
         >>> round(fastrest.Impact(steel, 0.01).e(1.0), 4)
         0.7132
+
+        A sweep that runs past the model's end keeps its valid speeds with ``past_end="nan"``:
+
+        >>> import warnings
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore")
+        ...     fastrest.Impact(steel, 0.01).e([1.0, 100.0], past_end="nan").round(4)
+        array([0.7132,    nan])
         """
+        if past_end == "nan":
+            return self._nan_past_end(V1, unloading, extrapolate)
+        if past_end != "raise":
+            raise ValueError(f"past_end must be 'raise' or 'nan'; got {past_end!r}")
         return direct.e_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
                              unloading=unloading, extrapolate=extrapolate, **self._law_kw())
+
+    def _nan_past_end(self, V1, unloading, extrapolate):
+        """e at the speeds the model covers, NaN past its end, one RuntimeWarning naming the first."""
+        V = check_velocity(V1, "V1", "(m/s)")  # bad input is still an error
+        top = self.V_max(unloading, extrapolate=extrapolate)
+        inside = V <= top * (1.0 + 1e-12)
+        out = np.full(V.shape, np.nan)
+        if inside.any():
+            out[inside] = self.e(V[inside], unloading, extrapolate=extrapolate)
+        if not inside.all():
+            first = float(V[~inside].ravel()[0])
+            warn(f"{int((~inside).sum())} of {V.size} speeds are past the model's end and give NaN (the first, "
+                 f"V1 = {first!r} m/s; the end: V1 = {top:.10g} m/s{'' if extrapolate else ', w_m* = 425'})",
+                 RuntimeWarning)
+        return float(out) if out.ndim == 0 else out
 
     @doc(_DOC)
     def rebound_velocity(self, V1: ArrayLike, unloading: str = "jcg", *, extrapolate: bool = False) -> float | NDArray[np.float64]:

@@ -1,5 +1,6 @@
 """Successive impacts on one spot (fastrest.repeated) against an independent time-stepping of the
-contact law that keeps the contact's history from one impact to the next."""
+contact law that keeps the contact's history from one impact to the next; and Impact.e's choice
+of NaN past the model's end (past_end), the other side of a sweep that runs past it."""
 import math
 
 import numpy as np
@@ -94,3 +95,25 @@ def test_bad_input_is_named(args, kwargs, match):
         IMP.repeated_impacts("fast", 2)
     with pytest.raises(ValueError, match="e_min"):
         IMP.repeated_impacts(0.5, 2).shakedown(1.5)
+
+
+def test_past_end_nan_keeps_the_valid_speeds():
+    """Impact.e(..., past_end="nan"): NaN past V_max, the others as alone, one warning naming the
+    first refused speed and the end; the default still refuses; bad input is still an error."""
+    top = IMP.V_max()
+    V = [0.5, top * 1.5, 2.0, top * 3.0]
+    with pytest.warns(RuntimeWarning, match=r"2 of 4 speeds are past the model's end .*the first, V1 = "
+                      + repr(top * 1.5).replace(".", r"\.")) as caught:
+        e = IMP.e(V, past_end="nan")
+    assert len(caught) == 1
+    assert np.isnan(e[[1, 3]]).all() and list(e[[0, 2]]) == list(IMP.e([0.5, 2.0]))
+    with pytest.raises(ValueError, match="425"):
+        IMP.e(V)
+    with pytest.raises(ValueError, match="V1"):
+        IMP.e([0.5, -1.0], past_end="nan")
+    with pytest.raises(ValueError, match="past_end must be 'raise' or 'nan'"):
+        IMP.e(0.5, past_end="clip")
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert IMP.e(0.5, past_end="nan") == IMP.e(0.5)  # no warning when every speed is covered
