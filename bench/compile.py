@@ -41,14 +41,14 @@ ENTRY = {
 WARMUP = {"fastrest warmup (everything)": "from fastrest import cli; cli.main(['warmup'])"}
 
 _FLOOR = """
-import time
+import json, time
 t0 = time.perf_counter()
 import numba
 @numba.njit(cache=True)
 def f(x):
     return x + 1.0
 f(1.0)
-print({"wall_s": time.perf_counter() - t0})
+print("RESULT " + json.dumps({"wall_s": time.perf_counter() - t0}))
 """
 
 _PROBE = """
@@ -94,7 +94,9 @@ def _fresh(code):
     if run.returncode != 0:
         raise RuntimeError(f"probe failed:\n{run.stderr[-2000:]}")
     line = [ln for ln in run.stdout.splitlines() if ln.strip()][-1]
-    data = json.loads(line[len("RESULT "):]) if line.startswith("RESULT ") else eval(line)  # noqa: S307
+    if not line.startswith("RESULT "):
+        raise RuntimeError(f"probe printed no result:\n{run.stdout[-2000:]}")
+    data = json.loads(line[len("RESULT "):])
     data["process_s"] = wall
     return data
 

@@ -178,7 +178,7 @@ def _cmd_e(args):
     for w in caught:
         if not issubclass(w.category, ValidityWarning):
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    code = _report_refused(refused)
+    code = report_refused("e", refused)
     if args.json:
         out = {"critical": crit, "impacts": rows, "warnings": notes}
         if refused:
@@ -225,23 +225,37 @@ def _speeds_covered(imp, V, extrapolate):
         return V, []
     except ValueError as exc:
         if not np.all(np.isfinite(V) & (V >= 0.0)):  # bad input, not a speed past the model's end
-            raise ValueError("--V: " + str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")) from None
+            raise ValueError("--V: " + _as_option_text(str(exc))) from None
+    kept, refused = split_speeds(V, lambda v: imp.v1_star(v, "jcg", extrapolate=extrapolate))
+    if not kept.size:
+        raise ValueError(f"--V: {refused[0][1]}")
+    return kept, refused
+
+
+def _as_option_text(msg):
+    """A model's message as the command line reads it (``extrapolate=True`` is ``--extrapolate``)."""
+    return msg.replace("extrapolate=True", "--extrapolate")
+
+
+def split_speeds(V, attempt):
+    """(the speeds of V, m/s, that ``attempt`` takes one by one, [(speed, why)] of each it refuses
+    with a ValueError, its message as the command line reads it): what ``fastrest e`` and
+    ``fastrest rough`` print of a list of speeds some of which are past the model's end."""
     kept, refused = [], []
-    for v in V.ravel():
+    for v in np.ravel(V):
         try:
-            imp.v1_star(float(v), "jcg", extrapolate=extrapolate)
+            attempt(float(v))
             kept.append(float(v))
         except ValueError as exc:
-            refused.append((float(v), str(exc).replace("Pass extrapolate=True", "Pass --extrapolate")))
-    if not kept:
-        raise ValueError(f"--V: {refused[0][1]}")
+            refused.append((float(v), _as_option_text(str(exc))))
     return np.array(kept), refused
 
 
-def _report_refused(refused):
-    """One error line on stderr per refused speed; the exit status (1 if any, else 0)."""
+def report_refused(command, refused):
+    """One ``fastrest COMMAND: error: --V SPEED: why`` line on stderr per refused speed; the exit
+    status (1 if any, else 0)."""
     for v, msg in refused:
-        print(f"fastrest e: error: --V {v:g}: {msg}", file=sys.stderr)
+        print(f"fastrest {command}: error: --V {v:g}: {msg}", file=sys.stderr)
     return 1 if refused else 0
 
 

@@ -493,9 +493,8 @@ class Impact:
         """
         V = check_velocity(V1, "V1", "(m/s)")
         v = V / self.V_c
-        # a few ulp of slack: V_max() itself (lim * V_c / V_c) must pass; the solver decides there
         law = self._law_kw()
-        over = v > speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading, **law) * (1.0 + 1e-12)
+        over = self._past_end(v, unloading, extrapolate)
         if np.any(over):
             try:
                 raise_out_of_range(np.ravel(V[over]), [self.eps_y], [self.nu], extrapolate, "V1", unloading,
@@ -629,11 +628,18 @@ class Impact:
         return direct.e_exact(self.v1_star(V1, unloading, extrapolate=extrapolate), self.eps_y, self.nu,
                              unloading=unloading, extrapolate=extrapolate, **self._law_kw())
 
+    def _past_end(self, v1_star, unloading, extrapolate):
+        """Where the normalised speeds ``v1_star`` lie past the model's end: the rule of
+        :meth:`v1_star` (a few ulp of slack: V_max() itself, lim * V_c / V_c, must pass; the solver
+        decides there)."""
+        lim = speed_limit(self.eps_y, self.nu, extrapolate=extrapolate, unloading=unloading, **self._law_kw())
+        return v1_star > lim * (1.0 + 1e-12)
+
     def _nan_past_end(self, V1, unloading, extrapolate):
         """e at the speeds the model covers, NaN past its end, one RuntimeWarning naming the first."""
         V = check_velocity(V1, "V1", "(m/s)")  # bad input is still an error
         top = self.V_max(unloading, extrapolate=extrapolate)
-        inside = V <= top * (1.0 + 1e-12)
+        inside = ~self._past_end(V / self.V_c, unloading, extrapolate)
         out = np.full(V.shape, np.nan)
         if inside.any():
             out[inside] = self.e(V[inside], unloading, extrapolate=extrapolate)
@@ -698,10 +704,10 @@ class Impact:
         Raises
         ------
         TypeError
-            Non-numbers; ``n`` not a whole number.
+            Non-numbers.
         ValueError
-            A speed not finite and > 0; ``n`` missing for one speed, given with a sequence, or
-            outside 1 to 1e6; a sequence that is not 1-D or empty; an impact that takes the
+            A speed not finite and > 0; ``n`` missing for one speed, given with a sequence, not a
+            whole number or outside 1 to 1e6; a sequence that is not 1-D or empty; an impact that takes the
             contact past the model's end (the message names the impact).
 
         Examples

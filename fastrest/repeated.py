@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validation import as_float_array, check_bool, real_scalar
+from ._validation import as_float_array, check_bool, check_count, real_scalar
 
 __all__ = ["RepeatedImpacts", "repeated_impacts"]
 
@@ -128,20 +128,17 @@ def repeated_impacts(impact: Any, V1: ArrayLike, n: int | None = None, unloading
     Raises
     ------
     TypeError
-        Non-numbers; ``n`` not a whole number.
+        Non-numbers.
     ValueError
-        A speed not finite and > 0; ``n`` missing for one speed, given with a sequence, or outside
-        1 to 1e6; a sequence that is not 1-D or empty; an equivalent speed past the model's end
+        A speed not finite and > 0; ``n`` missing for one speed, given with a sequence, not a whole
+        number or outside 1 to 1e6; a sequence that is not 1-D or empty; an equivalent speed past the model's end
         (the message of :meth:`fastrest.Impact.e`, naming the impact).
     """
     speeds = as_float_array(V1, "V1")
     if speeds.ndim == 0:
         if n is None:
             raise ValueError("n (the number of impacts) is required with one speed V1")
-        count = real_scalar(n, "n")
-        if not (count.is_integer() and 1 <= count <= 1e6):
-            raise ValueError(f"n must be a whole number in [1, 1e6]; got {n!r}")
-        speeds = np.full(int(count), float(speeds))
+        speeds = np.full(check_count(n, "n", 1, 10**6), float(speeds))
     else:
         if n is not None:
             raise ValueError("n is for one speed V1; a sequence of speeds gives one impact each")

@@ -81,7 +81,7 @@ def test_energy_balance_of_each_impact():
 
 @pytest.mark.parametrize("args,kwargs,match", [
     ((0.5,), {}, "n .* is required"),
-    ((0.5, 0), {}, r"n must be a whole number in \[1, 1e6\]"),
+    ((0.5, 0), {}, r"n must be a whole number in \[1, 1000000\]"),
     ((0.5, 2.5), {}, "whole number"),
     (([0.5, 0.6], 3), {}, "n is for one speed"),
     (([0.5, -1.0],), {}, "impact 2 has -1.0"),

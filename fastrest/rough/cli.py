@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from typing import Any
 
 import numpy as np
@@ -19,7 +18,7 @@ _READING = {"cutoff": "--cutoff", "detrend": "--detrend", "unit": "--unit", "phy
 
 
 def _cmd_rough(args: argparse.Namespace) -> int:
-    from .._impact_cli import _material
+    from .._impact_cli import _material, report_refused
     from ..export.cli import cli_names, cli_warnings
     from .summits import from_topography
 
@@ -48,15 +47,13 @@ def _cmd_rough(args: argparse.Namespace) -> int:
                "radius_min": float(radii.min()), "radius_median": float(np.median(radii)),
                "radius_max": float(radii.max()), "height_sigma": float(surface.sigma),
                "plasticity_index": float(surface.plasticity_index)}
-    for v, msg in refused:  # each speed past the model's end: its own line; the others are printed
-        print(f"fastrest rough: error: --V {v:g}: {msg.replace('extrapolate=True', '--extrapolate')}", file=sys.stderr)
-    code = 1 if refused else 0
+    code = report_refused("rough", refused)  # each speed past the model's end: its own line
     if args.json:
         doc = {"topography": summary, "M": args.M, "unloading": args.unloading,
                "detrend": args.detrend or ("mean" if found.periodic else "height"), "cutoff": args.cutoff,
                "impacts": rows}
         if refused:
-            doc["refused"] = [{"V": v, "error": msg.replace("extrapolate=True", "--extrapolate")} for v, msg in refused]
+            doc["refused"] = [{"V": v, "error": msg} for v, msg in refused]
         print(json.dumps(doc, indent=2))
         return code
     print(f"rough surface from {found.source}: {found.n_pixels} pixels, dx = {found.dx:.6g} m, "
@@ -77,22 +74,18 @@ def _cmd_rough(args: argparse.Namespace) -> int:
 def _impacts_covered(surface, V, args):
     """(the impacts at the speeds of V the model covers, [(speed, why) of each refused]); the first
     refusal raised when no speed is covered."""
+    from .._impact_cli import split_speeds
+
     try:
         return surface.impact(V, args.M, args.unloading, extrapolate=args.extrapolate), []
-    except ValueError as exc:
-        if V.size < 2 or not np.all(np.isfinite(V) & (V > 0.0)):  # one speed, or bad input: as it is
+    except ValueError as whole:
+        if not np.all(np.isfinite(V) & (V > 0.0)):  # bad input: as it is
             raise
-        first = exc
-    kept, refused = [], []
-    for v in V.ravel():
-        try:
-            surface.impact(float(v), args.M, args.unloading, extrapolate=args.extrapolate)
-            kept.append(float(v))
-        except ValueError as exc:
-            refused.append((float(v), str(exc)))
-    if not kept:
-        raise first
-    return surface.impact(np.array(kept), args.M, args.unloading, extrapolate=args.extrapolate), refused
+        kept, refused = split_speeds(V, lambda v: surface.impact(v, args.M, args.unloading,
+                                                                 extrapolate=args.extrapolate))
+        if not kept.size:  # no speed covered: the whole call's refusal
+            raise whole
+    return surface.impact(kept, args.M, args.unloading, extrapolate=args.extrapolate), refused
 
 
 def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> argparse.ArgumentParser:

@@ -177,6 +177,8 @@ void FixWallJGM::post_force(int)
   double *radius = atom->radius;
   int *mask = atom->mask, *type = atom->type;
   const double from_pressure = 1.0 / force->nktv2p, dt = update->dt;
+  const bool resist = contact.res.any(), sliding = contact.mu >= 0.0;
+  const double still[3] = {0.0, 0.0, 0.0};    // the wall: a body at rest
   force_flag = 0;
   wall_force[0] = wall_force[1] = 0.0;
   for (int i = 0; i < atom->nlocal; ++i) {
@@ -199,10 +201,8 @@ void FixWallJGM::post_force(int)
       }
       double n[3] = {0.0, 0.0, side == 0 ? 1.0 : -1.0};    // from the wall to the sphere
       // as pair_style jgm, with the wall a body at rest and the sphere's radius the reduced one
-      const double still[3] = {0.0, 0.0, 0.0};
       double vt[3] = {0.0, 0.0, 0.0};
-      if (contact.mu >= 0.0) FastrestJGM::sliding_velocity(v[i], still, omega[i], still, r, 0.0, n, vt);
-      const bool resist = contact.res.any();
+      if (sliding) FastrestJGM::sliding_velocity(v[i], still, omega[i], still, r, 0.0, n, vt);
       const FastrestJGM::ContactHistory ch = {h, h + W_XI, h + W_R, h + W_T};
       FastrestJGM::ContactForce cf;
       if (!FastrestJGM::contact_step(contact, laws, law, ch, w, r, n, vt, omega[i], from_pressure,
@@ -212,7 +212,7 @@ void FixWallJGM::post_force(int)
       const double fn = cf.fn, *ft = cf.ft;
       if (resist)
         for (int k = 0; k < 3; ++k) torque[i][k] += cf.mt[k];
-      if (contact.mu >= 0.0) {    // torque of F_t applied at -r n: (-r n) x F_t
+      if (sliding) {    // torque of F_t applied at -r n: (-r n) x F_t
         torque[i][0] += -r * (n[1] * ft[2] - n[2] * ft[1]);
         torque[i][1] += -r * (n[2] * ft[0] - n[0] * ft[2]);
         torque[i][2] += -r * (n[0] * ft[1] - n[1] * ft[0]);
